@@ -1,0 +1,37 @@
+// Bridge that lets one header be included by both C++ and GLSL (glslang, GL_GOOGLE_include_directive).
+// Only the common subset is used in shared headers: uint/int/float scalars, fixed arrays, plain
+// functions. In C++ everything lives in namespace sm::gpu.
+#ifndef SM_GLSL_CPP_H
+#define SM_GLSL_CPP_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#define SM_BEGIN_NAMESPACE namespace sm::gpu {
+#define SM_END_NAMESPACE }
+#define SM_FN constexpr inline
+#define SM_CONST inline constexpr
+// Fixed-size array definitions: SM_ARRAY(uint, NAME, 4) SM_ARRAY_INIT(uint, 4)(DATA) ...
+#define SM_IN_ARR(T, name, n) const T name[n]
+#define SM_OUT_ARR(T, name, n) T name[n]
+#define SM_INOUT(T, name) T& name
+#define SM_OUT(T, name) T& name
+#define SM_U(x) x##u
+#else
+#define SM_BEGIN_NAMESPACE
+#define SM_END_NAMESPACE
+#define SM_FN
+#define SM_CONST const
+#define SM_IN_ARR(T, name, n) T name[n]
+#define SM_OUT_ARR(T, name, n) out T name[n]
+#define SM_INOUT(T, name) inout T name
+#define SM_OUT(T, name) out T name
+#define SM_U(x) x##u
+#endif
+
+#ifdef __cplusplus
+namespace sm::gpu {
+using uint = uint32_t;
+}
+#endif
+
+#endif

@@ -1,0 +1,53 @@
+// The one place where cells enter a mesh. Every reader hands its cells here, so validation
+// (ids in range, repeated vertices, finite coordinates), orientation fixing, quadratic-cell
+// reduction and the counting of skipped cells happen identically for every format, with messages
+// naming the file and the file's own cell number.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::mesh {
+
+class MeshBuilder {
+ public:
+  explicit MeshBuilder(std::string source);
+
+  // Points must be set before cells (orientation needs them). Non-finite coordinates throw.
+  void setPoints(std::vector<glm::dvec3> points);
+  uint64_t numPoints() const { return mesh_.points.size(); }
+
+  // A cell as VTK describes it. Volume cells are kept (quadratic and higher-order ones reduced to
+  // their corners, voxels converted to hexahedra); 0D, 1D, 2D cells and polyhedra are counted and
+  // skipped. Throws sm::FileError for ids out of range and repeated vertices.
+  void addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
+  // A linear cell in VTK vertex order (used by formats that are not VTK's, after their conversion).
+  void addCell(CellType type, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
+
+  void reserveCells(CellType type, uint64_t n);
+
+  // A point field step; values.size() must equal the point count. Non-finite values are allowed
+  // (they render transparent) and reported once per field as a warning.
+  void addFieldStep(const std::string& name, uint64_t step, std::vector<float> values);
+  void setTimeValues(std::vector<double> times) { mesh_.timeValues = std::move(times); }
+  // Replaces the cluster id of every cell added so far that came from file cell i with ids[i].
+  void setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName);
+
+  // Checks fields for missing steps, prints one warning per kind of fix or skip, returns the mesh.
+  UnstructuredMesh finish();
+
+ private:
+  std::string source_;
+  UnstructuredMesh mesh_;
+  // File cell number of every kept cell, per type, so that cell arrays (clusters) can be applied.
+  std::array<std::vector<uint64_t>, kNumCellTypes> fileCellOf_;
+  uint64_t firstInvertedCell_ = 0;
+  uint64_t degenerate_ = 0;
+  uint64_t firstDegenerateCell_ = 0;
+};
+
+}  // namespace sm::mesh

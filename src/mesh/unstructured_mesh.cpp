@@ -1,0 +1,137 @@
+#include "mesh/unstructured_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+
+#include "common/error.h"
+
+namespace sm::mesh {
+
+void Range::extend(double v) {
+  if (!std::isfinite(v)) return;
+  if (empty) {
+    lo = hi = v;
+    empty = false;
+  } else {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+}
+
+void Range::extend(const Range& r) {
+  if (r.empty) return;
+  extend(r.lo);
+  extend(r.hi);
+}
+
+void Bounds::extend(const glm::dvec3& p) {
+  if (empty) {
+    lo = hi = p;
+    empty = false;
+  } else {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+}
+
+void Bounds::extend(const Bounds& b) {
+  if (b.empty) return;
+  extend(b.lo);
+  extend(b.hi);
+}
+
+double Bounds::diagonal() const {
+  if (empty) return 0.0;
+  glm::dvec3 e = extent();
+  return std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+}
+
+void SkippedCells::add(const SkippedCells& s) {
+  surface += s.surface;
+  lineOrVertex += s.lineOrVertex;
+  polyhedra += s.polyhedra;
+  other += s.other;
+  quadraticReduced += s.quadraticReduced;
+}
+
+uint64_t UnstructuredMesh::numCells() const {
+  uint64_t n = 0;
+  for (CellType t : kAllCellTypes) n += numCells(t);
+  return n;
+}
+
+int32_t UnstructuredMesh::numClusters() const {
+  int32_t m = -1;
+  for (const auto& c : clusters)
+    for (int32_t id : c) m = std::max(m, id);
+  return m + 1;
+}
+
+Bounds UnstructuredMesh::bounds() const {
+  Bounds b;
+  for (const auto& p : points) b.extend(p);
+  return b;
+}
+
+const Field* UnstructuredMesh::findField(const std::string& name) const {
+  for (const auto& f : fields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+uint64_t UnstructuredMesh::numSteps() const {
+  uint64_t n = 0;
+  for (const auto& f : fields) n = std::max<uint64_t>(n, f.numSteps());
+  return n;
+}
+
+Range fieldRange(const Field& f, uint64_t step) {
+  Range r;
+  if (step >= f.steps.size()) return r;
+  for (float v : f.steps[step]) r.extend(v);
+  return r;
+}
+
+Range fieldRange(const Field& f) {
+  Range r;
+  for (uint64_t s = 0; s < f.steps.size(); ++s) r.extend(fieldRange(f, s));
+  return r;
+}
+
+void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
+  if (a.points.empty() && a.numCells() == 0 && a.fields.empty()) {
+    std::string source = a.source;
+    a = b;
+    if (!source.empty()) a.source = source;
+    return;
+  }
+  if (a.fields.size() != b.fields.size())
+    throw Error(b.source, ": has ", b.fields.size(), " point fields but the first piece has ",
+                a.fields.size());
+  uint64_t offset = a.points.size();
+  if (offset + b.points.size() > 0xFFFFFFFFull)
+    throw Error(b.source, ": more than 2^32 - 1 points in one rank's share of the mesh");
+  for (size_t i = 0; i < a.fields.size(); ++i) {
+    const Field* fb = b.findField(a.fields[i].name);
+    if (!fb) throw Error(b.source, ": has no point field '", a.fields[i].name, "'");
+    if (fb->numSteps() != a.fields[i].numSteps())
+      throw Error(b.source, ": field '", fb->name, "' has ", fb->numSteps(), " time steps, not ",
+                  a.fields[i].numSteps());
+    for (uint64_t s = 0; s < fb->numSteps(); ++s)
+      a.fields[i].steps[s].insert(a.fields[i].steps[s].end(), fb->steps[s].begin(),
+                                  fb->steps[s].end());
+  }
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    a.cells[t].reserve(a.cells[t].size() + b.cells[t].size());
+    for (uint32_t id : b.cells[t]) a.cells[t].push_back(static_cast<uint32_t>(id + offset));
+    a.clusters[t].insert(a.clusters[t].end(), b.clusters[t].begin(), b.clusters[t].end());
+  }
+  if (a.timeValues.empty()) a.timeValues = b.timeValues;
+  a.skipped.add(b.skipped);
+  a.invertedFixed += b.invertedFixed;
+}
+
+}  // namespace sm::mesh

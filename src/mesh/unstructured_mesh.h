@@ -1,0 +1,78 @@
+// The in-memory mesh every reader produces and every later stage consumes (umesh style: plain
+// arrays plus free functions). Element vertex ids are 32-bit (one rank's piece never needs more);
+// every count is 64-bit.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/cell_type.h"
+
+namespace sm::mesh {
+
+// A named per-vertex scalar field with one or more time steps: steps[t][vertex].
+struct Field {
+  std::string name;
+  std::vector<std::vector<float>> steps;
+  uint64_t numSteps() const { return steps.size(); }
+};
+
+struct Range {
+  double lo = 0, hi = 0;
+  bool empty = true;
+  void extend(double v);
+  void extend(const Range& r);
+};
+
+struct Bounds {
+  glm::dvec3 lo{0.0}, hi{0.0};
+  bool empty = true;
+  void extend(const glm::dvec3& p);
+  void extend(const Bounds& b);
+  glm::dvec3 center() const { return (lo + hi) * 0.5; }
+  glm::dvec3 extent() const { return hi - lo; }
+  double diagonal() const;
+};
+
+// Cells a reader met but does not render; they are counted and reported, never silently dropped.
+struct SkippedCells {
+  uint64_t surface = 0;          // triangles, quads, polygons (2D cells)
+  uint64_t lineOrVertex = 0;     // 0D and 1D cells
+  uint64_t polyhedra = 0;        // VTK_POLYHEDRON and other general polyhedra
+  uint64_t other = 0;            // anything else (unknown or unsupported volume types)
+  uint64_t quadraticReduced = 0; // kept, reduced to their corner vertices
+  uint64_t totalSkipped() const { return surface + lineOrVertex + polyhedra + other; }
+  void add(const SkippedCells& s);
+};
+
+struct UnstructuredMesh {
+  std::string source;  // file the mesh came from, for messages
+  std::vector<glm::dvec3> points;
+  std::array<std::vector<uint32_t>, kNumCellTypes> cells;    // numVerts(type) ids per element
+  std::array<std::vector<int32_t>, kNumCellTypes> clusters;  // cluster id per element
+  std::vector<Field> fields;
+  std::vector<double> timeValues;  // time of each step, when the file says
+  SkippedCells skipped;
+  uint64_t invertedFixed = 0;
+
+  uint64_t numPoints() const { return points.size(); }
+  uint64_t numCells(CellType t) const { return cells[typeIndex(t)].size() / numVerts(t); }
+  uint64_t numCells() const;
+  int32_t numClusters() const;  // 1 + largest cluster id; 0 for an empty mesh
+  Bounds bounds() const;
+  const Field* findField(const std::string& name) const;
+  uint64_t numSteps() const;  // most steps of any field
+};
+
+// Scalar range of one step of a field, over finite values only.
+Range fieldRange(const Field& f, uint64_t step);
+Range fieldRange(const Field& f);  // all steps
+
+// Appends `b` to `a` (vertex ids of b shifted); fields must match by name and step count.
+void append(UnstructuredMesh& a, const UnstructuredMesh& b);
+
+}  // namespace sm::mesh

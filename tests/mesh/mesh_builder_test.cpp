@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/error.h"
+#include "mesh/element_geometry.h"
+#include "mesh/mesh_builder.h"
+
+namespace sm::mesh {
+namespace {
+
+std::vector<glm::dvec3> wedgePoints() {
+  // VTK's own Wedge.vtu: triangle (0,1,2) faces (3,4,5), which VTK's validator calls inverted.
+  return {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+}
+
+TEST(MeshBuilder, FixesInvertedCellsAndKeepsVolumePositive) {
+  MeshBuilder b("wedge.vtu");
+  b.setPoints(wedgePoints());
+  const int64_t ids[6] = {0, 1, 2, 3, 4, 5};
+  b.addVtkCell(13, ids, 0);
+  auto m = b.finish();
+  ASSERT_EQ(m.numCells(CellType::Wedge), 1u);
+  EXPECT_EQ(m.invertedFixed, 1u);
+  EXPECT_GT(signedVolume(CellType::Wedge, m.cells[2], m.points), 0.0);
+}
+
+TEST(MeshBuilder, SkipsAndCountsNonVolumeCells) {
+  MeshBuilder b("mixed.vtk");
+  b.setPoints(wedgePoints());
+  const int64_t tri[3] = {0, 1, 2}, line[2] = {0, 1};
+  b.addVtkCell(5, tri, 0);
+  b.addVtkCell(3, line, 1);
+  b.addVtkCell(42, tri, 2);
+  auto m = b.finish();
+  EXPECT_EQ(m.numCells(), 0u);
+  EXPECT_EQ(m.skipped.surface, 1u);
+  EXPECT_EQ(m.skipped.lineOrVertex, 1u);
+  EXPECT_EQ(m.skipped.polyhedra, 1u);
+}
+
+TEST(MeshBuilder, ReducesQuadraticTetToCorners) {
+  MeshBuilder b("q.vtu");
+  std::vector<glm::dvec3> p(10, glm::dvec3(0.5));
+  p[0] = {0, 0, 0};
+  p[1] = {1, 0, 0};
+  p[2] = {0, 1, 0};
+  p[3] = {0, 0, 1};
+  b.setPoints(p);
+  const int64_t ids[10] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  b.addVtkCell(24, ids, 0);
+  auto m = b.finish();
+  EXPECT_EQ(m.numCells(CellType::Tet), 1u);
+  EXPECT_EQ(m.skipped.quadraticReduced, 1u);
+}
+
+TEST(MeshBuilder, ErrorsNameFileAndCell) {
+  MeshBuilder b("bad.vtu");
+  b.setPoints(wedgePoints());
+  const int64_t outOfRange[4] = {0, 1, 2, 17};
+  try {
+    b.addVtkCell(10, outOfRange, 42);
+    FAIL() << "expected an error";
+  } catch (const FileError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.vtu"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("cell 42"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("17"), std::string::npos) << msg;
+  }
+  const int64_t repeated[4] = {0, 1, 1, 3};
+  EXPECT_THROW(b.addVtkCell(10, repeated, 7), FileError);
+  const int64_t tooFew[3] = {0, 1, 2};
+  EXPECT_THROW(b.addVtkCell(12, tooFew, 8), FileError);
+}
+
+TEST(MeshBuilder, RejectsNonFiniteCoordinates) {
+  MeshBuilder b("nan.vtu");
+  EXPECT_THROW(b.setPoints({{0, 0, 0}, {std::nan(""), 0, 0}}), FileError);
+}
+
+TEST(MeshBuilder, FieldSizeMismatchIsAnError) {
+  MeshBuilder b("f.vtu");
+  b.setPoints(wedgePoints());
+  EXPECT_THROW(b.addFieldStep("p", 0, std::vector<float>(3, 1.0f)), FileError);
+}
+
+TEST(MeshBuilder, ClusterIdsFollowFileCells) {
+  MeshBuilder b("c.vtu");
+  b.setPoints({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}});
+  const int64_t t0[4] = {0, 1, 2, 3}, tri[3] = {0, 1, 2}, t1[4] = {1, 2, 3, 4};
+  b.addVtkCell(10, t0, 0);
+  b.addVtkCell(5, tri, 1);
+  b.addVtkCell(10, t1, 2);
+  const int64_t ids[3] = {7, 8, 9};
+  b.setClusterIds(ids, "cluster");
+  auto m = b.finish();
+  ASSERT_EQ(m.clusters[0].size(), 2u);
+  EXPECT_EQ(m.clusters[0][0], 7);
+  EXPECT_EQ(m.clusters[0][1], 9);
+  EXPECT_EQ(m.numClusters(), 10);
+}
+
+}  // namespace
+}  // namespace sm::mesh
