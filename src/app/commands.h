@@ -1,0 +1,12 @@
+// Each subcommand of the `shellmarch` tool registers itself on the CLI11 app; its callback does the
+// work and throws sm::Error for user errors (printed as one line, exit status 1).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace sm::app {
+
+void registerInfo(CLI::App& app);      // cmd_info.cpp
+void registerGenerate(CLI::App& app);  // cmd_generate.cpp
+
+}  // namespace sm::app

@@ -1,0 +1,37 @@
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "common/error.h"
+#include "common/log.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"shellmarch: direct volume rendering of unstructured meshes, data-parallel over MPI"};
+  app.require_subcommand(1);
+  bool verbose = false, quiet = false;
+  app.add_flag("-v,--verbose", verbose, "More messages");
+  app.add_flag("-q,--quiet", quiet, "Errors only");
+  app.parse_complete_callback([&] {
+    if (verbose) sm::log::setLevel(sm::log::Level::Info);
+    if (quiet) sm::log::setLevel(sm::log::Level::Quiet);
+  });
+  sm::app::registerInfo(app);
+  sm::app::registerGenerate(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const sm::Error& e) {
+    std::fprintf(stderr, "shellmarch: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "shellmarch: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "shellmarch: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,45 @@
+// Meshes made by shellmarch itself: CFD-like meshes from gmsh (the demo data set and benchmarks)
+// and tiny analytic meshes for tests. Every mesh is positively oriented and conforming.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::gen {
+
+enum class Body { Capsule, Lander };
+
+struct CfdMeshOptions {
+  Body body = Body::Capsule;
+  uint64_t targetElements = 300000;  // 10 thousand .. 10 million; the result is within ~25%
+  int clusters = 8;                  // METIS parts (non-convex, interlocking)
+  int steps = 1;                     // time steps of the analytic fields
+  bool hexBlock = false;             // add a block of hexahedra in the wake
+  uint64_t seed = 1;
+  int threads = 0;                   // gmsh threads (0 = all cores)
+};
+
+// A body in a far-field box: boundary-layer wedges (prisms) on the body, pyramids where gmsh joins
+// layer quads to tetrahedra, tetrahedra elsewhere, optionally a hexahedral block; split into
+// clusters by METIS; analytic point fields (see addAnalyticFields) over `steps` steps.
+mesh::UnstructuredMesh generateCfdMesh(const CfdMeshOptions& options);
+
+// Tiny analytic meshes for tests (unit-sized, positively oriented, one cluster).
+mesh::UnstructuredMesh singleElement(mesh::CellType type);
+// One element of each type sharing faces: a hexahedron, a wedge on one of its quads, a pyramid on
+// another, and tetrahedra on the pyramid's and wedge's triangles.
+mesh::UnstructuredMesh zoo();
+enum class CubeSplit { Tets5, Tets6, Wedges, Pyramids, Hex };
+// The cube [0, size]^3 as n^3 cells, each split as asked (Pyramids: six pyramids around the
+// cell centre; Wedges: two wedges).
+mesh::UnstructuredMesh cube(CubeSplit split, int n = 1, double size = 1.0);
+
+// Adds analytic point fields over `steps` time steps, t in [0, 1]:
+//   "linear"  x + 2y + 3z (normalised to the bounds), the same every step;
+//   "shock"   a smoothed planar shock moving through the domain;
+//   "vortex"  a swirling vortex whose centre moves with time.
+void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps);
+
+}  // namespace sm::gen

@@ -1,0 +1,51 @@
+// Reading and writing meshes. Format is chosen by file extension:
+//   .vtu   VTK XML unstructured grid (ascii, inline base64, appended raw/base64, zlib)
+//   .pvtu  parallel VTK XML: one piece = one cluster; pieces of one read are welded (exactly
+//          coincident points merged) so that faces between clusters become interior
+//   .vtk   legacy VTK UNSTRUCTURED_GRID, ascii or binary, versions 3 (CELLS/CELL_TYPES) and 5.1
+//          (OFFSETS/CONNECTIVITY)
+//   .ugrid FUN3D/AFLR3 (.ugrid ascii; .b8/.lb8 binary, .b8l/.lb8l 64-bit ints, ...), fields from
+//          float32 side files (docs/FORMATS.md)
+// Time steps in VTK XML files are point arrays named "NAME@t<K>" (K = 0, 1, ...), grouped into one
+// field NAME with K steps; a plain "NAME" is a field with one step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::io {
+
+struct ReadOptions {
+  // Point fields to load. "NAME" loads a scalar array, or the magnitude of a vector array;
+  // "NAME[k]" loads component k. Empty: every point array (vectors as magnitudes). A name the
+  // file does not have is an error that lists the names it has.
+  std::vector<std::string> fields;
+  bool loadFields = true;
+  // Cell array holding cluster ids. Empty: the first of "cluster", "partition", "vtkProcessId"
+  // present; else every cell is cluster 0. For .pvtu, piece i is cluster i and this is ignored.
+  std::string clusterArray;
+  // .pvtu only: read just these pieces (cluster ids stay the global piece numbers). Empty: all.
+  std::vector<int> pieces;
+};
+
+mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});
+
+// Pieces in a .pvtu without reading them (1 for every other format).
+int countPieces(const std::string& path);
+
+struct WriteOptions {
+  bool compress = true;  // zlib-compressed appended raw data
+};
+
+// Writes a .pvtu and one .vtu per cluster beside it (PATH_STEM/PATH_STEM_<k>.vtu). Fields with
+// several time steps are written as NAME@t<K> arrays. The files are written to temporary names and
+// renamed when complete.
+void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
+               const WriteOptions& options = {});
+// Writes one .vtu (appended raw, optional zlib) with the cluster ids as a cell array "cluster".
+void writeVtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
+              const WriteOptions& options = {});
+
+}  // namespace sm::io

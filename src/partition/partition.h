@@ -1,0 +1,30 @@
+// Clusters and ranks. A cluster is a solver partition (a .pvtu piece, a cluster cell array, or a
+// METIS part); a rank renders one or more clusters, merged into one volume.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::partition {
+
+// Splits the mesh into n clusters with METIS on the element dual graph (elements adjacent when
+// they share a face: 3 common nodes, like mpmetis -gtype=dual -ncommon=3) and stores the part of
+// every element in mesh.clusters. Deterministic for a given mesh and n. n = 1 sets all to 0.
+void assignMetisClusters(mesh::UnstructuredMesh& mesh, int n, uint64_t seed = 1);
+
+// Elements per cluster id (index = cluster id).
+std::vector<uint64_t> clusterSizes(const mesh::UnstructuredMesh& mesh);
+
+// Clusters to ranks, balancing element counts: largest cluster first onto the least loaded rank
+// (ties: lowest rank). clusterToRank[c] is the rank of cluster c; empty clusters go to rank 0.
+std::vector<int> assignClustersToRanks(const std::vector<uint64_t>& clusterSizes, int ranks);
+
+// The elements of the given clusters as one mesh: unused points dropped, points renumbered in
+// their original order, fields and cluster ids kept. Faces between these clusters are shared by
+// vertex ids (as in the input), so preparation sees them as interior.
+mesh::UnstructuredMesh extractClusters(const mesh::UnstructuredMesh& mesh,
+                                       const std::vector<int>& clusters);
+
+}  // namespace sm::partition

@@ -1,0 +1,77 @@
+#include "scene/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "common/error.h"
+
+namespace sm::scene {
+
+ViewPreset parseViewPreset(const std::string& s) {
+  if (s == "iso") return ViewPreset::Iso;
+  if (s == "+x") return ViewPreset::PosX;
+  if (s == "-x") return ViewPreset::NegX;
+  if (s == "+y") return ViewPreset::PosY;
+  if (s == "-y") return ViewPreset::NegY;
+  if (s == "+z") return ViewPreset::PosZ;
+  if (s == "-z") return ViewPreset::NegZ;
+  throw Error("--view: unknown view '", s, "' (use iso, +x, -x, +y, -y, +z or -z)");
+}
+
+Camera frameBounds(const mesh::Bounds& b, ViewPreset view, double aspect, double fovyDeg) {
+  glm::dvec3 dir(0.0), up(0, 0, 1);
+  switch (view) {
+    case ViewPreset::Iso: dir = glm::normalize(glm::dvec3(-1, -1.3, -0.8)); break;
+    case ViewPreset::PosX: dir = {1, 0, 0}; break;
+    case ViewPreset::NegX: dir = {-1, 0, 0}; break;
+    case ViewPreset::PosY: dir = {0, 1, 0}; break;
+    case ViewPreset::NegY: dir = {0, -1, 0}; break;
+    case ViewPreset::PosZ: dir = {0, 0, 1}; up = {0, 1, 0}; break;
+    case ViewPreset::NegZ: dir = {0, 0, -1}; up = {0, 1, 0}; break;
+  }
+  Camera c;
+  c.fovyDeg = fovyDeg;
+  c.at = b.empty ? glm::dvec3(0.0) : b.center();
+  double radius = std::max(0.5 * b.diagonal(), 1e-30);
+  double halfY = glm::radians(fovyDeg) * 0.5;
+  double halfX = std::atan(std::tan(halfY) * aspect);
+  double half = std::min(halfX, halfY);
+  double dist = radius / std::sin(half) * 1.02;
+  c.eye = c.at - dir * dist;
+  c.up = up;
+  return c;
+}
+
+CameraFrame cameraFrame(const Camera& c, int width, int height) {
+  if (width <= 0 || height <= 0) throw Error("image size ", width, "x", height, " is empty");
+  if (!(c.fovyDeg > 0.0 && c.fovyDeg < 180.0))
+    throw Error("--fovy: ", c.fovyDeg, " degrees is not in (0, 180)");
+  glm::dvec3 f = c.at - c.eye;
+  if (glm::length(f) == 0.0) throw Error("camera: --eye and --at are the same point");
+  f = glm::normalize(f);
+  glm::dvec3 r = glm::cross(f, c.up);
+  if (glm::length(r) < 1e-12 * glm::length(c.up) || glm::length(c.up) == 0.0)
+    throw Error("camera: --up is parallel to the viewing direction");
+  r = glm::normalize(r);
+  CameraFrame fr;
+  fr.eye = c.eye;
+  fr.forward = f;
+  fr.right = r;
+  fr.upOrtho = glm::cross(r, f);
+  fr.tanHalfFovy = std::tan(glm::radians(c.fovyDeg) * 0.5);
+  fr.aspect = double(width) / double(height);
+  fr.width = width;
+  fr.height = height;
+  return fr;
+}
+
+glm::dvec3 CameraFrame::direction(double px, double py) const {
+  double u = (2.0 * px / width - 1.0) * tanHalfFovy * aspect;
+  double v = (1.0 - 2.0 * py / height) * tanHalfFovy;
+  return glm::normalize(forward + u * right + v * upOrtho);
+}
+
+}  // namespace sm::scene

@@ -1,0 +1,159 @@
+#include "scene/image.h"
+
+#include <algorithm>
+#include <cmath>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
+#include <glm/common.hpp>
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
+
+#include "common/error.h"
+#include "common/file_util.h"
+
+namespace sm::scene {
+namespace {
+
+uint8_t toByte(float v) {
+  if (!std::isfinite(v)) v = 0.0f;
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+void writeEncoded(const std::string& path, const std::vector<uint8_t>& raw, int w, int h, int comp) {
+  std::vector<uint8_t> png;
+  auto sink = [](void* ctx, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(ctx);
+    auto* p = static_cast<uint8_t*>(data);
+    out->insert(out->end(), p, p + size);
+  };
+  if (!stbi_write_png_to_func(sink, &png, w, h, comp, raw.data(), w * comp))
+    throw Error(path, ": PNG encoding failed");
+  writeBytesAtomically(path, png);
+}
+
+}  // namespace
+
+void writePng(const std::string& path, const Image& img, const glm::vec3& bg) {
+  std::vector<uint8_t> raw(size_t(img.width) * img.height * 3);
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    const glm::vec4& p = img.pixels[i];
+    glm::vec3 c = glm::vec3(p) + (1.0f - p.a) * bg;
+    raw[3 * i] = toByte(c.r);
+    raw[3 * i + 1] = toByte(c.g);
+    raw[3 * i + 2] = toByte(c.b);
+  }
+  writeEncoded(path, raw, img.width, img.height, 3);
+}
+
+void writePngRgba(const std::string& path, const Image& img) {
+  std::vector<uint8_t> raw(size_t(img.width) * img.height * 4);
+  for (size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c) raw[4 * i + c] = toByte(img.pixels[i][c]);
+  writeEncoded(path, raw, img.width, img.height, 4);
+}
+
+Image readPng(const std::string& path) {
+  auto bytes = readFile(path);
+  int w = 0, h = 0, comp = 0;
+  stbi_uc* data = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4);
+  if (!data) throw FileError(path, "not a readable PNG: ", stbi_failure_reason());
+  Image img(w, h);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    img.pixels[i] = glm::vec4(data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]) / 255.0f;
+  stbi_image_free(data);
+  return img;
+}
+
+ImageError compareImages(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw Error("comparing images of different sizes: ", a.width, "x", a.height, " and ", b.width,
+                "x", b.height);
+  ImageError e;
+  double sum = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    bool bad = false;
+    for (int c = 0; c < 4; ++c) {
+      double x = a.pixels[i][c], y = b.pixels[i][c];
+      if (!std::isfinite(x) || !std::isfinite(y)) {
+        bad = true;
+        continue;
+      }
+      double d = std::abs(x - y);
+      sum += d * d;
+      e.maxAbs = std::max(e.maxAbs, d);
+    }
+    e.nanPixels += bad;
+  }
+  e.rmse = a.pixels.empty() ? 0.0 : std::sqrt(sum / (4.0 * a.pixels.size()));
+  e.psnr = e.rmse > 0 ? 20.0 * std::log10(1.0 / e.rmse) : 99.0;
+  return e;
+}
+
+double ssim(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) throw Error("ssim: image sizes differ");
+  auto lum = [](const glm::vec4& p) { return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b; };
+  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+  const int win = 8;
+  double total = 0;
+  int windows = 0;
+  for (int y0 = 0; y0 + win <= a.height; y0 += win / 2) {
+    for (int x0 = 0; x0 + win <= a.width; x0 += win / 2) {
+      double ma = 0, mb = 0, va = 0, vb = 0, cov = 0;
+      for (int y = y0; y < y0 + win; ++y)
+        for (int x = x0; x < x0 + win; ++x) {
+          ma += lum(a.at(x, y));
+          mb += lum(b.at(x, y));
+        }
+      ma /= win * win;
+      mb /= win * win;
+      for (int y = y0; y < y0 + win; ++y)
+        for (int x = x0; x < x0 + win; ++x) {
+          double da = lum(a.at(x, y)) - ma, db = lum(b.at(x, y)) - mb;
+          va += da * da;
+          vb += db * db;
+          cov += da * db;
+        }
+      va /= win * win - 1;
+      vb /= win * win - 1;
+      cov /= win * win - 1;
+      total += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+      ++windows;
+    }
+  }
+  return windows ? total / windows : 1.0;
+}
+
+Image differenceImage(const Image& a, const Image& b, float scale) {
+  Image d(a.width, a.height);
+  for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+    glm::vec4 diff = glm::abs(a.pixels[i] - b.pixels[i]);
+    float m = std::min(1.0f, std::max({diff.r, diff.g, diff.b, diff.a}) * scale);
+    d.pixels[i] = glm::vec4(m, m, m, 1.0f);
+  }
+  return d;
+}
+
+Image l2Heatmap(const Image& a, const Image& b, float maxValue) {
+  Image h(a.width, a.height);
+  std::vector<float> l2(a.pixels.size());
+  float mx = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    glm::vec4 d = a.pixels[i] - b.pixels[i];
+    l2[i] = std::sqrt(d.r * d.r + d.g * d.g + d.b * d.b + d.a * d.a);
+    mx = std::max(mx, l2[i]);
+  }
+  if (maxValue > 0) mx = maxValue;
+  for (size_t i = 0; i < l2.size(); ++i) {
+    float t = mx > 0 ? std::clamp(l2[i] / mx, 0.0f, 1.0f) : 0.0f;
+    // black -> red -> yellow -> white
+    glm::vec3 c(std::min(1.0f, 3 * t), std::clamp(3 * t - 1, 0.0f, 1.0f), std::clamp(3 * t - 2, 0.0f, 1.0f));
+    h.pixels[i] = glm::vec4(c, 1.0f);
+  }
+  return h;
+}
+
+}  // namespace sm::scene

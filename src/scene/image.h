@@ -1,0 +1,41 @@
+// Float RGBA images (premultiplied colour + opacity, row 0 at the top), PNG I/O and the error
+// metrics that image tests and accuracy benchmarks report.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace sm::scene {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<glm::vec4> pixels;
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h, glm::vec4(0.0f)) {}
+  glm::vec4& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+  const glm::vec4& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+};
+
+// Composites the premultiplied image over a background and writes an 8-bit RGB PNG, atomically.
+void writePng(const std::string& path, const Image& img, const glm::vec3& background);
+// Writes the image's colour with alpha as an 8-bit RGBA PNG (debug and test artefacts).
+void writePngRgba(const std::string& path, const Image& img);
+// Reads an 8-bit PNG as an opaque image (alpha = 1 unless the file has alpha); throws on failure.
+Image readPng(const std::string& path);
+
+struct ImageError {
+  double rmse = 0, maxAbs = 0, psnr = 0;  // over all four channels; PSNR for peak 1
+  int nanPixels = 0;                      // pixels with a non-finite channel in either image
+};
+ImageError compareImages(const Image& a, const Image& b);
+// Mean SSIM of luminance (8x8 windows, standard constants), composited over black.
+double ssim(const Image& a, const Image& b);
+// |a - b| per pixel (max over channels) times `scale`, as a grey-scale opaque image.
+Image differenceImage(const Image& a, const Image& b, float scale = 10.0f);
+// Per-pixel L2 norm of the RGBA difference mapped through a heat colour map (the paper's figure).
+Image l2Heatmap(const Image& a, const Image& b, float maxValue = 0.0f);
+
+}  // namespace sm::scene

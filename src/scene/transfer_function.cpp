@@ -1,0 +1,169 @@
+#include "scene/transfer_function.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "common/file_util.h"
+#include "scene/color_space.h"
+#include "scene/colormap_data.h"
+
+namespace sm::scene {
+
+glm::dvec4 TransferFunction::lookup(double s) const {
+  if (!std::isfinite(s) || table.empty()) return glm::dvec4(0.0);
+  double x = hi > lo ? (s - lo) / (hi - lo) : 0.5;
+  x = std::clamp(x, 0.0, 1.0) * double(table.size() - 1);
+  size_t i = std::min(size_t(x), table.size() - 1);
+  size_t j = std::min(i + 1, table.size() - 1);
+  double f = x - double(i);
+  return glm::dvec4(table[i]) * (1.0 - f) + glm::dvec4(table[j]) * f;
+}
+
+double TransferFunction::extinction(double s) const {
+  return lookup(s).a * opacityScale / unitDistance;
+}
+
+std::vector<std::string> builtinColormapNames() {
+  std::vector<std::string> names;
+  for (const auto& m : builtinColormaps()) names.emplace_back(m.name);
+  names.emplace_back("grayscale");
+  return names;
+}
+
+namespace {
+
+std::vector<glm::vec4> rampOpacity(std::vector<glm::vec4> t) {
+  for (size_t i = 0; i < t.size(); ++i) t[i].a = float(i) / float(t.size() - 1);
+  return t;
+}
+
+TransferFunction fromBuiltin(const std::string& name, int entries) {
+  TransferFunction tf;
+  tf.table.resize(entries);
+  if (name == "grayscale" || name == "greyscale") {
+    for (int i = 0; i < entries; ++i) {
+      float v = float(i) / float(entries - 1);
+      tf.table[i] = glm::vec4(v, v, v, 0);
+    }
+    tf.table = rampOpacity(std::move(tf.table));
+    return tf;
+  }
+  for (const auto& m : builtinColormaps()) {
+    if (m.name != name) continue;
+    for (int i = 0; i < entries; ++i) {
+      double x = double(i) / double(entries - 1) * 255.0;
+      int a = std::min(int(x), 255), b = std::min(a + 1, 255);
+      double f = x - a;
+      glm::dvec3 ca(m.rgb[3 * a], m.rgb[3 * a + 1], m.rgb[3 * a + 2]);
+      glm::dvec3 cb(m.rgb[3 * b], m.rgb[3 * b + 1], m.rgb[3 * b + 2]);
+      tf.table[i] = glm::vec4(glm::vec3(ca * (1 - f) + cb * f), 0);
+    }
+    tf.table = rampOpacity(std::move(tf.table));
+    return tf;
+  }
+  std::string all;
+  for (const auto& n : builtinColormapNames()) all += (all.empty() ? "" : ", ") + n;
+  throw Error("--colormap: unknown colour map '", name, "' (built-in: ", all,
+              "; or a ParaView .json file)");
+}
+
+// Piecewise function through sorted control points (x, value) sampled at `entries` points of
+// [0, 1], with the colour interpolation that ParaView's ColorSpace names.
+std::vector<glm::dvec3> sampleColors(std::vector<std::pair<double, glm::dvec3>> pts,
+                                     ColorSpace space, int entries) {
+  std::vector<glm::dvec3> out(entries);
+  for (int i = 0; i < entries; ++i) {
+    double x = double(i) / double(entries - 1);
+    size_t k = 0;
+    while (k + 2 < pts.size() && pts[k + 1].first < x) ++k;
+    const auto& [x0, c0] = pts[k];
+    const auto& [x1, c1] = pts[std::min(k + 1, pts.size() - 1)];
+    double f = x1 > x0 ? std::clamp((x - x0) / (x1 - x0), 0.0, 1.0) : 0.0;
+    out[i] = interpolateColor(c0, c1, f, space);
+  }
+  return out;
+}
+
+}  // namespace
+
+TransferFunction parseParaViewColormap(const std::string& text, const std::string& src, int entries) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(src, "not valid JSON: ", e.what());
+  }
+  if (j.is_array()) {
+    if (j.empty()) throw FileError(src, "empty colour-map array");
+    j = j[0];
+  }
+  if (!j.is_object()) throw FileError(src, "not a ParaView colour map (expected an object)");
+  auto numbers = [&](const char* key) {
+    std::vector<double> v;
+    if (!j.contains(key)) return v;
+    if (!j[key].is_array()) throw FileError(src, "\"", key, "\" is not an array");
+    for (const auto& x : j[key]) {
+      if (!x.is_number()) throw FileError(src, "\"", key, "\" holds a non-number");
+      double d = x.get<double>();
+      if (!std::isfinite(d)) throw FileError(src, "\"", key, "\" holds a non-finite number");
+      v.push_back(d);
+    }
+    return v;
+  };
+  std::vector<double> rgb = numbers("RGBPoints");
+  if (rgb.size() < 8 || rgb.size() % 4 != 0)
+    throw FileError(src, "\"RGBPoints\" needs at least two (x, r, g, b) points");
+  ColorSpace space = ColorSpace::RGB;
+  if (j.contains("ColorSpace")) {
+    if (!j["ColorSpace"].is_string()) throw FileError(src, "\"ColorSpace\" is not a string");
+    space = parseColorSpace(j["ColorSpace"].get<std::string>(), src);
+  }
+  std::vector<std::pair<double, glm::dvec3>> cpts;
+  for (size_t i = 0; i < rgb.size(); i += 4)
+    cpts.push_back({rgb[i], glm::clamp(glm::dvec3(rgb[i + 1], rgb[i + 2], rgb[i + 3]), 0.0, 1.0)});
+  std::stable_sort(cpts.begin(), cpts.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  double x0 = cpts.front().first, x1 = cpts.back().first;
+  for (auto& p : cpts) p.first = x1 > x0 ? (p.first - x0) / (x1 - x0) : 0.0;
+
+  TransferFunction tf;
+  tf.table.resize(entries);
+  auto colors = sampleColors(cpts, space, entries);
+  std::vector<double> op = numbers("Points");
+  if (!op.empty() && op.size() % 4 != 0)
+    throw FileError(src, "\"Points\" must hold (x, opacity, midpoint, sharpness) quadruples");
+  std::vector<std::pair<double, double>> opts;
+  for (size_t i = 0; i < op.size(); i += 4) opts.push_back({op[i], std::clamp(op[i + 1], 0.0, 1.0)});
+  std::stable_sort(opts.begin(), opts.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  if (!opts.empty()) {
+    double o0 = opts.front().first, o1 = opts.back().first;
+    for (auto& p : opts) p.first = o1 > o0 ? (p.first - o0) / (o1 - o0) : 0.0;
+  }
+  for (int i = 0; i < entries; ++i) {
+    double x = double(i) / double(entries - 1), a = x;
+    if (opts.size() == 1) a = opts[0].second;
+    if (opts.size() >= 2) {
+      size_t k = 0;
+      while (k + 2 < opts.size() && opts[k + 1].first < x) ++k;
+      double xa = opts[k].first, xb = opts[k + 1].first;
+      double f = xb > xa ? std::clamp((x - xa) / (xb - xa), 0.0, 1.0) : 0.0;
+      a = opts[k].second * (1 - f) + opts[k + 1].second * f;
+    }
+    tf.table[i] = glm::vec4(glm::vec3(colors[i]), float(a));
+  }
+  std::vector<double> nan = numbers("NanColor");
+  if (nan.size() >= 3) tf.nanColor = glm::vec3(nan[0], nan[1], nan[2]);
+  return tf;
+}
+
+TransferFunction makeTransferFunction(const std::string& colormap, int entries) {
+  if (entries < 256) throw Error("transfer function: ", entries, " entries (at least 256)");
+  if (fileExtension(colormap) == ".json")
+    return parseParaViewColormap(readTextFile(colormap), colormap, entries);
+  return fromBuiltin(colormap, entries);
+}
+
+}  // namespace sm::scene

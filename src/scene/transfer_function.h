@@ -1,0 +1,45 @@
+// Transfer function: scalar -> colour and opacity, shared by the GPU renderer and the CPU reference.
+//
+// Model (docs/ARCHITECTURE.md, "Rendering model"):
+//   x = clamp((s - lo) / (hi - lo), 0, 1); the table (N >= 256 RGBA entries) is interpolated
+//   linearly at x * (N - 1). NaN or infinite scalars are transparent.
+//   Opacity is per unit length: extinction sigma(s) = opacity(s) * opacityScale / unitDistance,
+//   so a sample taken every dt has alpha = 1 - exp(-sigma * dt) (opacity corrected for dt), and a
+//   homogeneous slab of thickness L has opacity 1 - exp(-sigma * L) whatever dt is.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace sm::scene {
+
+struct TransferFunction {
+  std::vector<glm::vec4> table;  // rgb + opacity in [0, 1]
+  double lo = 0.0, hi = 1.0;
+  double opacityScale = 1.0;
+  double unitDistance = 1.0;
+  glm::vec3 nanColor{1.0f, 1.0f, 0.0f};  // from ParaView files; NaN samples are still transparent
+
+  glm::dvec4 lookup(double s) const;     // rgb + table opacity; (0,0,0,0) for non-finite s
+  double extinction(double s) const;     // sigma(s), per world unit
+};
+
+// Names accepted by --colormap besides a .json file.
+std::vector<std::string> builtinColormapNames();
+
+// A transfer function from a built-in colour map name ("viridis", "cool-to-warm", "inferno",
+// "plasma", "grayscale", "jet", "turbo") or a ParaView colour-map JSON file, with `entries` table
+// entries. Opacity is a linear ramp 0..1 unless the JSON gives "Points". Throws sm::Error naming
+// the option or file.
+TransferFunction makeTransferFunction(const std::string& colormap, int entries = 256);
+
+// Parses a ParaView colour map (an object, or an array whose first element is one) with
+// "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...), "ColorSpace"
+// (RGB, Lab, HSV, Diverging) and "NanColor". Control points are rescaled to [0, 1].
+TransferFunction parseParaViewColormap(const std::string& jsonText, const std::string& sourceName,
+                                       int entries = 256);
+
+}  // namespace sm::scene
