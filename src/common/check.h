@@ -10,30 +10,30 @@ namespace sm::detail {
 [[noreturn]] void checkFailed(const char* file, int line, const char* expr, const std::string& msg);
 }  // namespace sm::detail
 
-#define SM_CHECK(cond)                                                                  \
-  do {                                                                                  \
-    if (!(cond)) [[unlikely]]                                                           \
-      ::sm::detail::checkFailed(__FILE__, __LINE__, #cond, std::string());              \
+#define SM_CHECK(cond)                                                     \
+  do {                                                                     \
+    if (!(cond)) [[unlikely]]                                              \
+      ::sm::detail::checkFailed(__FILE__, __LINE__, #cond, std::string()); \
   } while (0)
 
-#define SM_CHECK_MSG(cond, msg)                                                         \
-  do {                                                                                  \
-    if (!(cond)) [[unlikely]] {                                                         \
-      std::ostringstream sm_check_os_;                                                  \
-      sm_check_os_ << msg;                                                              \
-      ::sm::detail::checkFailed(__FILE__, __LINE__, #cond, sm_check_os_.str());         \
-    }                                                                                   \
+#define SM_CHECK_MSG(cond, msg)                                                 \
+  do {                                                                          \
+    if (!(cond)) [[unlikely]] {                                                 \
+      std::ostringstream sm_check_os_;                                          \
+      sm_check_os_ << msg;                                                      \
+      ::sm::detail::checkFailed(__FILE__, __LINE__, #cond, sm_check_os_.str()); \
+    }                                                                           \
   } while (0)
 
-#define SM_CHECK_OP(a, op, b)                                                           \
-  do {                                                                                  \
-    const auto& sm_a_ = (a);                                                            \
-    const auto& sm_b_ = (b);                                                            \
-    if (!(sm_a_ op sm_b_)) [[unlikely]] {                                               \
-      std::ostringstream sm_check_os_;                                                  \
-      sm_check_os_ << sm_a_ << " vs " << sm_b_;                                         \
+#define SM_CHECK_OP(a, op, b)                                                               \
+  do {                                                                                      \
+    const auto& sm_a_ = (a);                                                                \
+    const auto& sm_b_ = (b);                                                                \
+    if (!(sm_a_ op sm_b_)) [[unlikely]] {                                                   \
+      std::ostringstream sm_check_os_;                                                      \
+      sm_check_os_ << sm_a_ << " vs " << sm_b_;                                             \
       ::sm::detail::checkFailed(__FILE__, __LINE__, #a " " #op " " #b, sm_check_os_.str()); \
-    }                                                                                   \
+    }                                                                                       \
   } while (0)
 
 #define SM_CHECK_EQ(a, b) SM_CHECK_OP(a, ==, b)

@@ -70,11 +70,14 @@ void writeBytesAtomically(const std::string& path, std::span<const uint8_t> byte
 
 std::string fileExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
-std::string directoryOf(const std::string& path) { return fs::path(path).parent_path().string(); }
+std::string directoryOf(const std::string& path) {
+  return fs::path(path).parent_path().string();
+}
 
 std::string joinPath(const std::string& dir, const std::string& file) {
   if (dir.empty() || fs::path(file).is_absolute()) return file;

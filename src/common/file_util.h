@@ -16,11 +16,12 @@ std::string readTextFile(const std::string& path);
 
 // Calls write(tmpPath), then renames tmpPath to path. On any exception the temporary is removed and
 // the exception propagates; an existing file at path is untouched until the rename.
-void writeFileAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(const std::string&)>& write);
 void writeBytesAtomically(const std::string& path, std::span<const uint8_t> bytes);
 
 std::string fileExtension(const std::string& path);  // lower case, with the dot: ".vtu"
-std::string directoryOf(const std::string& path);     // "" for a bare file name
+std::string directoryOf(const std::string& path);    // "" for a bare file name
 std::string joinPath(const std::string& dir, const std::string& file);
 bool fileExists(const std::string& path);
 uint64_t fileSize(const std::string& path);

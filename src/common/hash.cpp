@@ -30,8 +30,12 @@ Hasher& Hasher::bytes(const void* data, size_t size) {
   return *this;
 }
 
-uint64_t Hasher::digest() const { return mix(h_ ^ n_); }
+uint64_t Hasher::digest() const {
+  return mix(h_ ^ n_);
+}
 
-uint64_t hashBytes(const void* data, size_t size) { return Hasher().bytes(data, size).digest(); }
+uint64_t hashBytes(const void* data, size_t size) {
+  return Hasher().bytes(data, size).digest();
+}
 
 }  // namespace sm

@@ -16,14 +16,24 @@ void emit(const char* kind, const std::string& line) {
 }
 }  // namespace
 
-void setLevel(Level l) { g_level = l; }
-Level level() { return g_level; }
+void setLevel(Level l) {
+  g_level = l;
+}
+Level level() {
+  return g_level;
+}
 void setPrefix(const std::string& prefix) {
   std::lock_guard lock(g_mutex);
   g_prefix = prefix;
 }
-void warningLine(const std::string& line) { emit("warning: ", line); }
-void infoLine(const std::string& line) { emit("", line); }
-void debugLine(const std::string& line) { emit("debug: ", line); }
+void warningLine(const std::string& line) {
+  emit("warning: ", line);
+}
+void infoLine(const std::string& line) {
+  emit("", line);
+}
+void debugLine(const std::string& line) {
+  emit("debug: ", line);
+}
 
 }  // namespace sm::log

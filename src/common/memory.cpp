@@ -24,8 +24,12 @@ uint64_t statusField(const char* key) {
 }
 }  // namespace
 
-uint64_t peakResidentBytes() { return statusField("VmHWM:"); }
-uint64_t currentResidentBytes() { return statusField("VmRSS:"); }
+uint64_t peakResidentBytes() {
+  return statusField("VmHWM:");
+}
+uint64_t currentResidentBytes() {
+  return statusField("VmRSS:");
+}
 bool resetPeakResident() {
   std::FILE* f = std::fopen("/proc/self/clear_refs", "w");
   if (!f) return false;

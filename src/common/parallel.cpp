@@ -9,7 +9,9 @@
 
 namespace sm {
 
-unsigned hardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
+unsigned hardwareThreads() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
 
 void parallelFor(int64_t n, const std::function<void(int64_t, int64_t)>& body, unsigned threads,
                  int64_t minChunk) {

@@ -32,8 +32,12 @@ double signedVolume(CellType t, std::span<const uint32_t> ids, std::span<const g
 
 void mirrorElement(CellType t, std::span<uint32_t> ids) {
   switch (t) {
-    case CellType::Tet: std::swap(ids[1], ids[2]); break;
-    case CellType::Pyramid: std::swap(ids[1], ids[3]); break;
+    case CellType::Tet:
+      std::swap(ids[1], ids[2]);
+      break;
+    case CellType::Pyramid:
+      std::swap(ids[1], ids[3]);
+      break;
     case CellType::Wedge:
       std::swap(ids[1], ids[2]);
       std::swap(ids[4], ids[5]);

@@ -11,7 +11,8 @@
 namespace sm::mesh {
 
 // Volume enclosed by the element's faces as the face table winds them (quads split by the shared
-// rule), by the divergence theorem. Negative for an inverted element, near zero for a degenerate one.
+// rule), by the divergence theorem. Negative for an inverted element, near zero for a degenerate
+// one.
 double signedVolume(CellType t, std::span<const uint32_t> ids, std::span<const glm::dvec3> points);
 
 // Permutes a VTK-ordered element into its mirror image (the same cell with opposite orientation):

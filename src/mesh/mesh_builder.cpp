@@ -15,45 +15,93 @@ enum class Kind { Volume, Surface, LineOrVertex, Polyhedron, Other };
 
 struct VtkTypeInfo {
   Kind kind;
-  CellType type;         // for Volume
-  uint32_t minIds;       // ids the cell must have
-  bool higherOrder;      // reduced to corners
-  bool voxel;            // VTK_VOXEL vertex order
+  CellType type;     // for Volume
+  uint32_t minIds;   // ids the cell must have
+  bool higherOrder;  // reduced to corners
+  bool voxel;        // VTK_VOXEL vertex order
 };
 
 VtkTypeInfo classify(int vtkType) {
-  auto vol = [](CellType t, uint32_t n, bool ho) { return VtkTypeInfo{Kind::Volume, t, n, ho, false}; };
+  auto vol = [](CellType t, uint32_t n, bool ho) {
+    return VtkTypeInfo{Kind::Volume, t, n, ho, false};
+  };
   switch (vtkType) {
-    case 10: return vol(CellType::Tet, 4, false);
-    case 12: return vol(CellType::Hex, 8, false);
-    case 13: return vol(CellType::Wedge, 6, false);
-    case 14: return vol(CellType::Pyramid, 5, false);
-    case 11: return VtkTypeInfo{Kind::Volume, CellType::Hex, 8, false, true};
-    case 24: case 71: case 78: return vol(CellType::Tet, 10, true);      // quadratic/Lagrange/Bezier tet
-    case 25: return vol(CellType::Hex, 20, true);
-    case 29: return vol(CellType::Hex, 27, true);
-    case 33: return vol(CellType::Hex, 24, true);
-    case 72: case 79: return vol(CellType::Hex, 8, true);
-    case 26: return vol(CellType::Wedge, 15, true);
-    case 31: return vol(CellType::Wedge, 12, true);
-    case 32: return vol(CellType::Wedge, 18, true);
-    case 73: case 80: return vol(CellType::Wedge, 6, true);
-    case 27: return vol(CellType::Pyramid, 13, true);
-    case 37: return vol(CellType::Pyramid, 19, true);
-    case 74: case 81: return vol(CellType::Pyramid, 5, true);
-    case 5: case 6: case 7: case 8: case 9: case 22: case 23: case 28: case 30: case 34: case 36:
-    case 69: case 70: case 75: case 76:
+    case 10:
+      return vol(CellType::Tet, 4, false);
+    case 12:
+      return vol(CellType::Hex, 8, false);
+    case 13:
+      return vol(CellType::Wedge, 6, false);
+    case 14:
+      return vol(CellType::Pyramid, 5, false);
+    case 11:
+      return VtkTypeInfo{Kind::Volume, CellType::Hex, 8, false, true};
+    case 24:
+    case 71:
+    case 78:
+      return vol(CellType::Tet, 10, true);  // quadratic/Lagrange/Bezier tet
+    case 25:
+      return vol(CellType::Hex, 20, true);
+    case 29:
+      return vol(CellType::Hex, 27, true);
+    case 33:
+      return vol(CellType::Hex, 24, true);
+    case 72:
+    case 79:
+      return vol(CellType::Hex, 8, true);
+    case 26:
+      return vol(CellType::Wedge, 15, true);
+    case 31:
+      return vol(CellType::Wedge, 12, true);
+    case 32:
+      return vol(CellType::Wedge, 18, true);
+    case 73:
+    case 80:
+      return vol(CellType::Wedge, 6, true);
+    case 27:
+      return vol(CellType::Pyramid, 13, true);
+    case 37:
+      return vol(CellType::Pyramid, 19, true);
+    case 74:
+    case 81:
+      return vol(CellType::Pyramid, 5, true);
+    case 5:
+    case 6:
+    case 7:
+    case 8:
+    case 9:
+    case 22:
+    case 23:
+    case 28:
+    case 30:
+    case 34:
+    case 36:
+    case 69:
+    case 70:
+    case 75:
+    case 76:
       return {Kind::Surface, CellType::Tet, 0, false, false};
-    case 1: case 2: case 3: case 4: case 21: case 35: case 68: case 77:
+    case 1:
+    case 2:
+    case 3:
+    case 4:
+    case 21:
+    case 35:
+    case 68:
+    case 77:
       return {Kind::LineOrVertex, CellType::Tet, 0, false, false};
-    case 42: return {Kind::Polyhedron, CellType::Tet, 0, false, false};
-    default: return {Kind::Other, CellType::Tet, 0, false, false};
+    case 42:
+      return {Kind::Polyhedron, CellType::Tet, 0, false, false};
+    default:
+      return {Kind::Other, CellType::Tet, 0, false, false};
   }
 }
 
 }  // namespace
 
-MeshBuilder::MeshBuilder(std::string source) : source_(std::move(source)) { mesh_.source = source_; }
+MeshBuilder::MeshBuilder(std::string source) : source_(std::move(source)) {
+  mesh_.source = source_;
+}
 
 void MeshBuilder::setPoints(std::vector<glm::dvec3> points) {
   if (points.size() > 0xFFFFFFFFull)
@@ -77,11 +125,20 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
                              int32_t cluster) {
   VtkTypeInfo info = classify(vtkType);
   switch (info.kind) {
-    case Kind::Surface: ++mesh_.skipped.surface; return;
-    case Kind::LineOrVertex: ++mesh_.skipped.lineOrVertex; return;
-    case Kind::Polyhedron: ++mesh_.skipped.polyhedra; return;
-    case Kind::Other: ++mesh_.skipped.other; return;
-    case Kind::Volume: break;
+    case Kind::Surface:
+      ++mesh_.skipped.surface;
+      return;
+    case Kind::LineOrVertex:
+      ++mesh_.skipped.lineOrVertex;
+      return;
+    case Kind::Polyhedron:
+      ++mesh_.skipped.polyhedra;
+      return;
+    case Kind::Other:
+      ++mesh_.skipped.other;
+      return;
+    case Kind::Volume:
+      break;
   }
   if (ids.size() < info.minIds)
     throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") has ", ids.size(),
@@ -137,7 +194,8 @@ void MeshBuilder::addFieldStep(const std::string& name, uint64_t step, std::vect
   f->steps[step] = std::move(values);
 }
 
-void MeshBuilder::setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName) {
+void MeshBuilder::setClusterIds(std::span<const int64_t> perFileCell,
+                                const std::string& arrayName) {
   for (int t = 0; t < kNumCellTypes; ++t) {
     auto& clusters = mesh_.clusters[t];
     const auto& fileCells = fileCellOf_[t];
@@ -148,8 +206,8 @@ void MeshBuilder::setClusterIds(std::span<const int64_t> perFileCell, const std:
                         " values but the file has more cells");
       int64_t id = perFileCell[c];
       if (id < 0 || id > 0x7FFFFFFF)
-        throw FileError(source_, "cell array '", arrayName, "' gives cell ", c,
-                        " the cluster id ", id, " (ids must be in 0 .. 2^31 - 1)");
+        throw FileError(source_, "cell array '", arrayName, "' gives cell ", c, " the cluster id ",
+                        id, " (ids must be in 0 .. 2^31 - 1)");
       clusters[i] = static_cast<int32_t>(id);
     }
   }
@@ -180,9 +238,11 @@ UnstructuredMesh MeshBuilder::finish() {
     log::warning(source_, ": ", degenerate_, " cells have zero volume (first: cell ",
                  firstDegenerateCell_, ")");
   const auto& s = mesh_.skipped;
-  if (s.surface) log::warning(source_, ": skipped ", s.surface, " 2D cells (triangles, quads, polygons)");
+  if (s.surface)
+    log::warning(source_, ": skipped ", s.surface, " 2D cells (triangles, quads, polygons)");
   if (s.lineOrVertex) log::warning(source_, ": skipped ", s.lineOrVertex, " vertex and line cells");
-  if (s.polyhedra) log::warning(source_, ": skipped ", s.polyhedra, " polyhedron cells (not supported)");
+  if (s.polyhedra)
+    log::warning(source_, ": skipped ", s.polyhedra, " polyhedron cells (not supported)");
   if (s.other) log::warning(source_, ": skipped ", s.other, " cells of unsupported types");
   if (s.quadraticReduced)
     log::warning(source_, ": reduced ", s.quadraticReduced,

@@ -24,7 +24,8 @@ class MeshBuilder {
   // A cell as VTK describes it. Volume cells are kept (quadratic and higher-order ones reduced to
   // their corners, voxels converted to hexahedra); 0D, 1D, 2D cells and polyhedra are counted and
   // skipped. Throws sm::FileError for ids out of range and repeated vertices.
-  void addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
+  void addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t fileCell,
+                  int32_t cluster = 0);
   // A linear cell in VTK vertex order (used by formats that are not VTK's, after their conversion).
   void addCell(CellType type, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
 

@@ -24,13 +24,29 @@ ViewPreset parseViewPreset(const std::string& s) {
 Camera frameBounds(const mesh::Bounds& b, ViewPreset view, double aspect, double fovyDeg) {
   glm::dvec3 dir(0.0), up(0, 0, 1);
   switch (view) {
-    case ViewPreset::Iso: dir = glm::normalize(glm::dvec3(-1, -1.3, -0.8)); break;
-    case ViewPreset::PosX: dir = {1, 0, 0}; break;
-    case ViewPreset::NegX: dir = {-1, 0, 0}; break;
-    case ViewPreset::PosY: dir = {0, 1, 0}; break;
-    case ViewPreset::NegY: dir = {0, -1, 0}; break;
-    case ViewPreset::PosZ: dir = {0, 0, 1}; up = {0, 1, 0}; break;
-    case ViewPreset::NegZ: dir = {0, 0, -1}; up = {0, 1, 0}; break;
+    case ViewPreset::Iso:
+      dir = glm::normalize(glm::dvec3(-1, -1.3, -0.8));
+      break;
+    case ViewPreset::PosX:
+      dir = {1, 0, 0};
+      break;
+    case ViewPreset::NegX:
+      dir = {-1, 0, 0};
+      break;
+    case ViewPreset::PosY:
+      dir = {0, 1, 0};
+      break;
+    case ViewPreset::NegY:
+      dir = {0, -1, 0};
+      break;
+    case ViewPreset::PosZ:
+      dir = {0, 0, 1};
+      up = {0, 1, 0};
+      break;
+    case ViewPreset::NegZ:
+      dir = {0, 0, -1};
+      up = {0, 1, 0};
+      break;
   }
   Camera c;
   c.fovyDeg = fovyDeg;

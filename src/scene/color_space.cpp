@@ -14,9 +14,15 @@ constexpr double kPi = std::numbers::pi;
 // D65 white point, as VTK's vtkMath uses.
 constexpr double kXn = 0.9505, kYn = 1.0, kZn = 1.089;
 
-double toLinear(double c) { return c > 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92; }
-double toGamma(double c) { return c > 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c; }
-double labF(double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; }
+double toLinear(double c) {
+  return c > 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92;
+}
+double toGamma(double c) {
+  return c > 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c;
+}
+double labF(double t) {
+  return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0;
+}
 double labFInv(double t) {
   double t3 = t * t * t;
   return t3 > 0.008856 ? t3 : (t - 16.0 / 116.0) / 7.787;
@@ -44,9 +50,12 @@ glm::dvec3 rgbToHsv(const glm::dvec3& c) {
   double mx = std::max({c.r, c.g, c.b}), mn = std::min({c.r, c.g, c.b}), d = mx - mn;
   double h = 0.0;
   if (d > 0) {
-    if (mx == c.r) h = std::fmod((c.g - c.b) / d + 6.0, 6.0);
-    else if (mx == c.g) h = (c.b - c.r) / d + 2.0;
-    else h = (c.r - c.g) / d + 4.0;
+    if (mx == c.r)
+      h = std::fmod((c.g - c.b) / d + 6.0, 6.0);
+    else if (mx == c.g)
+      h = (c.b - c.r) / d + 2.0;
+    else
+      h = (c.r - c.g) / d + 4.0;
     h /= 6.0;
   }
   return {h, mx > 0 ? d / mx : 0.0, mx};
@@ -57,12 +66,18 @@ glm::dvec3 hsvToRgb(const glm::dvec3& hsv) {
   int i = int(std::floor(h)) % 6;
   double f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
   switch (i) {
-    case 0: return {v, t, p};
-    case 1: return {q, v, p};
-    case 2: return {p, v, t};
-    case 3: return {p, q, v};
-    case 4: return {t, p, v};
-    default: return {v, p, q};
+    case 0:
+      return {v, t, p};
+    case 1:
+      return {q, v, p};
+    case 2:
+      return {p, v, t};
+    case 3:
+      return {p, q, v};
+    case 4:
+      return {t, p, v};
+    default:
+      return {v, p, q};
   }
 }
 
@@ -96,9 +111,12 @@ glm::dvec3 labToRgb(const glm::dvec3& lab) {
 
 glm::dvec3 interpolateColor(const glm::dvec3& a, const glm::dvec3& b, double f, ColorSpace space) {
   switch (space) {
-    case ColorSpace::RGB: return a * (1 - f) + b * f;
-    case ColorSpace::Lab: return labToRgb(rgbToLab(a) * (1 - f) + rgbToLab(b) * f);
-    case ColorSpace::HSV: return hsvToRgb(rgbToHsv(a) * (1 - f) + rgbToHsv(b) * f);
+    case ColorSpace::RGB:
+      return a * (1 - f) + b * f;
+    case ColorSpace::Lab:
+      return labToRgb(rgbToLab(a) * (1 - f) + rgbToLab(b) * f);
+    case ColorSpace::HSV:
+      return hsvToRgb(rgbToHsv(a) * (1 - f) + rgbToHsv(b) * f);
     case ColorSpace::Diverging: {
       glm::dvec3 m1 = labToMsh(rgbToLab(a)), m2 = labToMsh(rgbToLab(b));
       if (m1.y > 0.05 && m2.y > 0.05 && std::abs(m1.z - m2.z) > kPi / 3) {
@@ -111,8 +129,10 @@ glm::dvec3 interpolateColor(const glm::dvec3& a, const glm::dvec3& b, double f, 
           f = 2 * f - 1;
         }
       }
-      if (m1.y < 0.05 && m2.y > 0.05) m1.z = adjustHue(m2, m1.x);
-      else if (m2.y < 0.05 && m1.y > 0.05) m2.z = adjustHue(m1, m2.x);
+      if (m1.y < 0.05 && m2.y > 0.05)
+        m1.z = adjustHue(m2, m1.x);
+      else if (m2.y < 0.05 && m1.y > 0.05)
+        m2.z = adjustHue(m1, m2.x);
       return labToRgb(mshToLab(m1 * (1 - f) + m2 * f));
     }
   }

@@ -23,7 +23,8 @@ uint8_t toByte(float v) {
   return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-void writeEncoded(const std::string& path, const std::vector<uint8_t>& raw, int w, int h, int comp) {
+void writeEncoded(const std::string& path, const std::vector<uint8_t>& raw, int w, int h,
+                  int comp) {
   std::vector<uint8_t> png;
   auto sink = [](void* ctx, void* data, int size) {
     auto* out = static_cast<std::vector<uint8_t>*>(ctx);
@@ -63,7 +64,8 @@ Image readPng(const std::string& path) {
   if (!data) throw FileError(path, "not a readable PNG: ", stbi_failure_reason());
   Image img(w, h);
   for (size_t i = 0; i < size_t(w) * h; ++i)
-    img.pixels[i] = glm::vec4(data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]) / 255.0f;
+    img.pixels[i] =
+        glm::vec4(data[4 * i], data[4 * i + 1], data[4 * i + 2], data[4 * i + 3]) / 255.0f;
   stbi_image_free(data);
   return img;
 }
@@ -150,7 +152,8 @@ Image l2Heatmap(const Image& a, const Image& b, float maxValue) {
   for (size_t i = 0; i < l2.size(); ++i) {
     float t = mx > 0 ? std::clamp(l2[i] / mx, 0.0f, 1.0f) : 0.0f;
     // black -> red -> yellow -> white
-    glm::vec3 c(std::min(1.0f, 3 * t), std::clamp(3 * t - 1, 0.0f, 1.0f), std::clamp(3 * t - 2, 0.0f, 1.0f));
+    glm::vec3 c(std::min(1.0f, 3 * t), std::clamp(3 * t - 1, 0.0f, 1.0f),
+                std::clamp(3 * t - 2, 0.0f, 1.0f));
     h.pixels[i] = glm::vec4(c, 1.0f);
   }
   return h;

@@ -90,7 +90,8 @@ std::vector<glm::dvec3> sampleColors(std::vector<std::pair<double, glm::dvec3>> 
 
 }  // namespace
 
-TransferFunction parseParaViewColormap(const std::string& text, const std::string& src, int entries) {
+TransferFunction parseParaViewColormap(const std::string& text, const std::string& src,
+                                       int entries) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -136,7 +137,8 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   if (!op.empty() && op.size() % 4 != 0)
     throw FileError(src, "\"Points\" must hold (x, opacity, midpoint, sharpness) quadruples");
   std::vector<std::pair<double, double>> opts;
-  for (size_t i = 0; i < op.size(); i += 4) opts.push_back({op[i], std::clamp(op[i + 1], 0.0, 1.0)});
+  for (size_t i = 0; i < op.size(); i += 4)
+    opts.push_back({op[i], std::clamp(op[i + 1], 0.0, 1.0)});
   std::stable_sort(opts.begin(), opts.end(), [](auto& a, auto& b) { return a.first < b.first; });
   if (!opts.empty()) {
     double o0 = opts.front().first, o1 = opts.back().first;

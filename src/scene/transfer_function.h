@@ -1,4 +1,5 @@
-// Transfer function: scalar -> colour and opacity, shared by the GPU renderer and the CPU reference.
+// Transfer function: scalar -> colour and opacity, shared by the GPU renderer and the CPU
+// reference.
 //
 // Model (docs/ARCHITECTURE.md, "Rendering model"):
 //   x = clamp((s - lo) / (hi - lo), 0, 1); the table (N >= 256 RGBA entries) is interpolated
@@ -23,8 +24,8 @@ struct TransferFunction {
   double unitDistance = 1.0;
   glm::vec3 nanColor{1.0f, 1.0f, 0.0f};  // from ParaView files; NaN samples are still transparent
 
-  glm::dvec4 lookup(double s) const;     // rgb + table opacity; (0,0,0,0) for non-finite s
-  double extinction(double s) const;     // sigma(s), per world unit
+  glm::dvec4 lookup(double s) const;  // rgb + table opacity; (0,0,0,0) for non-finite s
+  double extinction(double s) const;  // sigma(s), per world unit
 };
 
 // Names accepted by --colormap besides a .json file.

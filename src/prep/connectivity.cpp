@@ -1,0 +1,139 @@
+#include "prep/connectivity.h"
+
+#include <algorithm>
+
+#include "common/check.h"
+#include "common/error.h"
+#include "mesh/cell_type.h"
+
+namespace sm::prep {
+namespace {
+
+// A face's vertices other than its smallest, sorted; c = ~0u for triangles.
+struct FaceKey {
+  uint32_t a, b, c;
+  uint64_t slot;
+  bool operator<(const FaceKey& o) const {
+    if (a != o.a) return a < o.a;
+    if (b != o.b) return b < o.b;
+    return c < o.c;
+  }
+  bool sameFace(const FaceKey& o) const { return a == o.a && b == o.b && c == o.c; }
+};
+
+uint32_t faceMin(const uint32_t* f, uint32_t n) {
+  uint32_t m = f[0];
+  for (uint32_t i = 1; i < n; ++i) m = std::min(m, f[i]);
+  return m;
+}
+
+inline void order2(uint32_t& a, uint32_t& b) {
+  if (b < a) std::swap(a, b);
+}
+
+// Sorting network on 3 or 4 ids (the 4th is ~0u for triangles, so it stays last).
+FaceKey makeKey(const uint32_t* f, uint32_t n, uint64_t slot) {
+  uint32_t a = f[0], b = f[1], c = f[2], d = n == 4 ? f[3] : ~0u;
+  order2(a, b);
+  order2(c, d);
+  order2(a, c);
+  order2(b, d);
+  order2(b, c);
+  return FaceKey{b, c, d, slot};
+}
+
+// Calls fn(globalSlot, faceVertexIds, n) for every face slot in order. Tet faces are listed by
+// vertex set only (their winding is irrelevant for matching).
+template <typename Fn>
+void forEachFace(const ElementArrays& elements, const FaceSlots& slots, Fn&& fn) {
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = gpu::SM_NUM_VERTS[t], nf = gpu::SM_NUM_FACES[t];
+    const uint32_t* v = elements[t].data();
+    uint64_t g = slots.begin(t);
+    for (uint64_t e = 0; e < slots.elements(t); ++e, v += nv) {
+      for (uint32_t s = 0; s < nf; ++s, ++g) {
+        uint32_t f[4];
+        uint32_t n = FaceSlots::faceVertices(t, v, s, f);
+        fn(g, f, n);
+      }
+    }
+  }
+}
+
+[[noreturn]] void nonManifold(const std::string& source, const FaceSlots& slots, const FaceKey* run,
+                              size_t count, uint32_t minVertex) {
+  std::string elems;
+  for (size_t i = 0; i < count && i < 4; ++i) {
+    auto s = slots.decode(run[i].slot);
+    elems += concat(i ? ", " : "", mesh::cellTypeName(mesh::CellType(s.type)), " #", s.element);
+  }
+  throw Error(source, ": face (", minVertex, ", ", run[0].a, ", ", run[0].b,
+              run[0].c != ~0u ? concat(", ", run[0].c) : std::string(), ") is shared by ", count,
+              " elements (", elems, count > 4 ? ", ..." : "", "); a face may have at most two");
+}
+
+}  // namespace
+
+ConnectivityStats computeConnectivity(const ElementArrays& elements, uint64_t numVertices,
+                                      ElementArrays& neighbors, const std::string& source) {
+  FaceSlots slots(elements);
+  const uint64_t total = slots.total();
+  if (total >= 0xFFFFFFFFull)
+    throw Error(source, ": ", total,
+                " element faces on one rank (at most 2^32 - 1); use more ranks");
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t)
+    neighbors[t].assign(slots.elements(t) * gpu::SM_NUM_FACES[t], gpu::SM_NO_NEIGHBOR);
+
+  // Counting sort of face slots by their smallest vertex.
+  std::vector<uint32_t> start(numVertices + 1, 0);
+  forEachFace(elements, slots,
+              [&](uint64_t, const uint32_t* f, uint32_t n) { ++start[faceMin(f, n) + 1]; });
+  for (uint64_t v = 0; v < numVertices; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> bucket(total);
+  {
+    std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+    forEachFace(elements, slots, [&](uint64_t g, const uint32_t* f, uint32_t n) {
+      bucket[cursor[faceMin(f, n)]++] = uint32_t(g);
+    });
+  }
+
+  ConnectivityStats stats;
+  std::vector<FaceKey> keys;
+  auto neighborRef = [&](const FaceSlots::Slot& s) { return gpu::smElemRef(s.element, s.type); };
+  for (uint64_t v = 0; v < numVertices; ++v) {
+    uint32_t b = start[v], e = start[v + 1];
+    if (b == e) continue;
+    keys.clear();
+    for (uint32_t i = b; i < e; ++i) {
+      auto s = slots.decode(bucket[i]);
+      const uint32_t* ev =
+          elements[s.type].data() + uint64_t(s.element) * gpu::SM_NUM_VERTS[s.type];
+      uint32_t f[4];
+      uint32_t n = FaceSlots::faceVertices(s.type, ev, s.slot, f);
+      keys.push_back(makeKey(f, n, bucket[i]));
+    }
+    // Buckets hold a few dozen faces: insertion sort beats std::sort here.
+    for (size_t i = 1; i < keys.size(); ++i)
+      for (size_t j = i; j > 0 && keys[j] < keys[j - 1]; --j) std::swap(keys[j], keys[j - 1]);
+    for (size_t i = 0; i < keys.size();) {
+      size_t j = i + 1;
+      while (j < keys.size() && keys[j].sameFace(keys[i])) ++j;
+      if (j - i == 2) {
+        auto s0 = slots.decode(keys[i].slot), s1 = slots.decode(keys[i + 1].slot);
+        neighbors[s0.type][uint64_t(s0.element) * gpu::SM_NUM_FACES[s0.type] + s0.slot] =
+            neighborRef(s1);
+        neighbors[s1.type][uint64_t(s1.element) * gpu::SM_NUM_FACES[s1.type] + s1.slot] =
+            neighborRef(s0);
+        ++stats.interiorFaces;
+      } else if (j - i == 1) {
+        ++stats.boundaryFaces;
+      } else {
+        nonManifold(source, slots, &keys[i], j - i, uint32_t(v));
+      }
+      i = j;
+    }
+  }
+  return stats;
+}
+
+}  // namespace sm::prep

@@ -1,0 +1,105 @@
+#include "prep/prepare.h"
+
+#include "common/check.h"
+#include "common/error.h"
+#include "common/timer.h"
+#include "prep/compaction.h"
+#include "prep/shell.h"
+#include "prep/vertex_order.h"
+
+namespace sm::prep {
+namespace {
+
+// Rebased float positions in the global order; returns order (new -> old).
+std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
+                                     std::vector<float>& positions) {
+  std::vector<uint32_t> order = globalVertexOrder(mesh.points, frame);
+  positions.resize(3 * order.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    glm::dvec3 p = mesh.points[order[i]] - frame.origin;
+    positions[3 * i] = float(p.x);
+    positions[3 * i + 1] = float(p.y);
+    positions[3 * i + 2] = float(p.z);
+  }
+  std::vector<glm::dvec3>().swap(mesh.points);
+  return order;
+}
+
+void remapElements(ElementArrays& elements, const std::vector<uint32_t>& order) {
+  std::vector<uint32_t> newId(order.size());
+  for (size_t i = 0; i < order.size(); ++i) newId[order[i]] = uint32_t(i);
+  for (auto& cells : elements)
+    for (uint32_t& v : cells) v = newId[v];
+}
+
+}  // namespace
+
+uint64_t PreparedRank::numElements() const {
+  uint64_t n = 0;
+  for (uint64_t c : elementCount) n += c;
+  return n;
+}
+
+uint32_t PreparedRank::typesPresent() const {
+  uint32_t bits = 0;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t)
+    if (elementCount[t]) bits |= 1u << t;
+  return bits;
+}
+
+PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
+                       const PrepOptions& options) {
+  PrepResult result;
+  PreparedRank& r = result.rank;
+  r.frame = frame;
+  r.compact = options.compact;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    r.elementCount[t] = mesh.cells[t].size() / gpu::SM_NUM_VERTS[t];
+    if (r.elementCount[t] >= gpu::SM_MAX_ELEMS_PER_TYPE)
+      throw Error(
+          mesh.source, ": ", r.elementCount[t], " ", mesh::cellTypePluralName(mesh::CellType(t)),
+          " on one rank; an element reference addresses at most 2^30 per type (use more ranks)");
+  }
+
+  Timer timer;
+  r.vertexSource = orderAndRebase(mesh, frame, r.positions);
+  ElementArrays elements;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) elements[t] = std::move(mesh.cells[t]);
+  remapElements(elements, r.vertexSource);
+  result.timings.vertexOrder = timer.seconds();
+
+  timer.reset();
+  result.connectivity = computeConnectivity(elements, r.numVertices(), r.neighbors, mesh.source);
+  result.timings.connectivity = timer.seconds();
+
+  timer.reset();
+  Shell shell = extractShell(elements, r.neighbors, r.positions);
+  r.shellIndices = std::move(shell.indices);
+  r.shellRefs = std::move(shell.refs);
+  if (options.compact) r.shellOther = std::move(shell.other);
+  result.timings.shell = timer.seconds();
+
+  timer.reset();
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    if (options.compact && t != gpu::SM_HEX) {
+      r.elements[t] = compactElements(t, elements[t]);
+      std::vector<uint32_t>().swap(elements[t]);
+    } else {
+      r.elements[t] = std::move(elements[t]);
+    }
+  }
+  result.timings.compaction = timer.seconds();
+  return result;
+}
+
+std::vector<float> gatherScalars(const PreparedRank& rank, const std::vector<float>& meshValues) {
+  std::vector<float> out(rank.vertexSource.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    uint32_t src = rank.vertexSource[i];
+    SM_CHECK_LT(src, meshValues.size());
+    out[i] = meshValues[src];
+  }
+  return out;
+}
+
+}  // namespace sm::prep

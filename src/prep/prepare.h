@@ -1,0 +1,32 @@
+// Per-rank preparation: global vertex order and rebasing, connectivity, shell, compaction.
+#pragma once
+
+#include <string>
+
+#include "mesh/unstructured_mesh.h"
+#include "prep/connectivity.h"
+#include "prep/prepared_rank.h"
+
+namespace sm::prep {
+
+struct PrepTimings {
+  double vertexOrder = 0, connectivity = 0, shell = 0, compaction = 0;  // seconds
+  double total() const { return vertexOrder + connectivity + shell + compaction; }
+};
+
+struct PrepResult {
+  PreparedRank rank;
+  PrepTimings timings;
+  ConnectivityStats connectivity;
+};
+
+// Prepares one rank's mesh. Takes the geometry out of `mesh` (points and cells are moved out and
+// released as soon as they are converted, to keep peak memory low); fields, clusters and the rest
+// stay for the caller. The frame must be the same on every rank.
+PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
+                       const PrepOptions& options);
+
+// One step of one field in this rank's vertex order (what the GPU scalar buffer holds).
+std::vector<float> gatherScalars(const PreparedRank& rank, const std::vector<float>& meshValues);
+
+}  // namespace sm::prep

@@ -1,0 +1,75 @@
+#include "prep/shell.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "mesh/unstructured_mesh.h"
+#include "prep/vertex_order.h"
+
+namespace sm::prep {
+
+Shell extractShell(const ElementArrays& elements, const ElementArrays& neighbors,
+                   const std::vector<float>& positions) {
+  Shell shell;
+  FaceSlots slots(elements);
+  auto emit = [&](uint32_t a, uint32_t b, uint32_t c, uint32_t ref, uint32_t other) {
+    shell.indices.insert(shell.indices.end(), {a, b, c});
+    shell.refs.push_back(ref);
+    shell.other.push_back(other);
+  };
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = gpu::SM_NUM_VERTS[t], nf = gpu::SM_NUM_FACES[t];
+    const uint32_t* nb = neighbors[t].data();
+    for (uint64_t e = 0; e < slots.elements(t); ++e) {
+      const uint32_t* v = elements[t].data() + e * nv;
+      for (uint32_t s = 0; s < nf; ++s) {
+        if (nb[e * nf + s] != gpu::SM_NO_NEIGHBOR) continue;
+        uint32_t f[4];
+        uint32_t n = FaceSlots::faceVertices(t, v, s, f);
+        uint32_t ref = gpu::smElemRef(uint32_t(e), t);
+        if (n == 3) {
+          emit(f[0], f[1], f[2], ref, ~0u);
+        } else {
+          uint32_t tri[6], other[2];
+          gpu::smQuadSplit(f[0], f[1], f[2], f[3], tri, other);
+          emit(tri[0], tri[1], tri[2], ref, other[0]);
+          emit(tri[3], tri[4], tri[5], ref, other[1]);
+        }
+      }
+    }
+  }
+  sortShellSpatially(shell, positions);
+  return shell;
+}
+
+void sortShellSpatially(Shell& shell, const std::vector<float>& positions) {
+  const size_t n = shell.refs.size();
+  if (n < 2) return;
+  auto pos = [&](uint32_t v) {
+    return glm::dvec3(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+  };
+  mesh::Bounds b;
+  std::vector<glm::dvec3> centroid(n);
+  for (size_t i = 0; i < n; ++i) {
+    centroid[i] = (pos(shell.indices[3 * i]) + pos(shell.indices[3 * i + 1]) +
+                   pos(shell.indices[3 * i + 2])) /
+                  3.0;
+    b.extend(centroid[i]);
+  }
+  std::vector<std::pair<uint64_t, uint32_t>> keys(n);
+  for (size_t i = 0; i < n; ++i) keys[i] = {mortonCode(centroid[i], b), uint32_t(i)};
+  std::sort(keys.begin(), keys.end());
+  Shell sorted;
+  sorted.indices.resize(shell.indices.size());
+  sorted.refs.resize(n);
+  sorted.other.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t src = keys[i].second;
+    std::copy_n(&shell.indices[3 * src], 3, &sorted.indices[3 * i]);
+    sorted.refs[i] = shell.refs[src];
+    sorted.other[i] = shell.other[src];
+  }
+  shell = std::move(sorted);
+}
+
+}  // namespace sm::prep

@@ -1,0 +1,26 @@
+// Shell extraction (the paper's "Per-Node Shell Generation"): every face without a neighbour on
+// this rank, wound outward, quads split by the shared rule, sorted spatially.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "prep/face_slots.h"
+
+namespace sm::prep {
+
+struct Shell {
+  std::vector<uint32_t> indices;  // 3 per triangle
+  std::vector<uint32_t> refs;     // element behind each triangle (index << 2 | type)
+  std::vector<uint32_t> other;    // 4th quad vertex per triangle, ~0u for triangle faces
+};
+
+// positions: rebased float xyz of this rank's vertices (for the spatial sort).
+Shell extractShell(const ElementArrays& elements, const ElementArrays& neighbors,
+                   const std::vector<float>& positions);
+
+// Reorders triangles by the Morton code of their centroids. Lavapipe's BVH builder splits the
+// triangle list in index order: unsorted shells trace hundreds of times slower (DESIGN.md).
+void sortShellSpatially(Shell& shell, const std::vector<float>& positions);
+
+}  // namespace sm::prep

@@ -1,0 +1,62 @@
+#include "prep/vertex_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace sm::prep {
+namespace {
+
+uint64_t spread21(uint64_t x) {
+  x &= 0x1FFFFF;
+  x = (x | x << 32) & 0x1F00000000FFFFull;
+  x = (x | x << 16) & 0x1F0000FF0000FFull;
+  x = (x | x << 8) & 0x100F00F00F00F00Full;
+  x = (x | x << 4) & 0x10C30C30C30C30C3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+uint64_t quantise(double v, double lo, double hi) {
+  if (!(hi > lo)) return 0;
+  double q = (v - lo) / (hi - lo) * 2097151.0;
+  return uint64_t(std::clamp(q, 0.0, 2097151.0));
+}
+
+}  // namespace
+
+GlobalFrame makeGlobalFrame(const mesh::Bounds& b) {
+  GlobalFrame f;
+  f.bounds = b;
+  f.origin = b.empty ? glm::dvec3(0.0) : b.center();
+  return f;
+}
+
+uint64_t mortonCode(const glm::dvec3& p, const mesh::Bounds& b) {
+  return spread21(quantise(p.x, b.lo.x, b.hi.x)) | spread21(quantise(p.y, b.lo.y, b.hi.y)) << 1 |
+         spread21(quantise(p.z, b.lo.z, b.hi.z)) << 2;
+}
+
+std::vector<uint32_t> globalVertexOrder(const std::vector<glm::dvec3>& points,
+                                        const GlobalFrame& frame) {
+  struct Key {
+    uint64_t morton;
+    uint32_t index;
+  };
+  std::vector<Key> keys(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    keys[i] = {mortonCode(points[i], frame.bounds), uint32_t(i)};
+  std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
+    if (a.morton != b.morton) return a.morton < b.morton;
+    const glm::dvec3 &p = points[a.index], &q = points[b.index];
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return a.index < b.index;
+  });
+  std::vector<uint32_t> order(points.size());
+  for (size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
+  return order;
+}
+
+}  // namespace sm::prep

@@ -1,0 +1,21 @@
+// Global vertex order and rebasing.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/unstructured_mesh.h"
+#include "prep/prepared_rank.h"
+
+namespace sm::prep {
+
+// 63-bit Morton code of p quantised to 21 bits per axis inside `b`.
+uint64_t mortonCode(const glm::dvec3& p, const mesh::Bounds& b);
+
+// Orders vertices by (Morton code in the global bounds, then x, y, z exactly, then input index):
+// a total order that depends only on positions (so all ranks agree on shared vertices) and keeps
+// spatially close vertices close in memory. Returns order[newIndex] = oldIndex.
+std::vector<uint32_t> globalVertexOrder(const std::vector<glm::dvec3>& points,
+                                        const GlobalFrame& frame);
+
+}  // namespace sm::prep
