@@ -1,0 +1,39 @@
+// Shell acceleration structures: one triangle BLAS over a rank's shell and a TLAS holding it.
+#pragma once
+
+#include <cstdint>
+
+#include "vk/buffer.h"
+
+namespace sm::vk {
+
+class AccelerationStructure {
+ public:
+  AccelerationStructure() = default;
+  AccelerationStructure(AccelerationStructure&&) noexcept = default;
+  AccelerationStructure& operator=(AccelerationStructure&&) noexcept = default;
+
+  VkAccelerationStructureKHR handle() const { return as_.get(); }
+  VkDeviceAddress address() const { return address_; }
+  VkDeviceSize bytes() const { return storage_.size(); }
+  bool valid() const { return bool(as_); }
+
+  // BLAS over triangles: positions (float xyz, `vertexCount`), indices (3 x uint32 per triangle).
+  // Opaque geometry, built for fast trace, compacted when `compact` and it saves memory.
+  static AccelerationStructure buildTriangles(const Context& ctx, const Buffer& positions,
+                                              uint32_t vertexCount, const Buffer& indices,
+                                              uint32_t triangleCount, bool compact,
+                                              const std::string& name);
+  // TLAS with one identity instance of `blas`.
+  static AccelerationStructure buildInstance(const Context& ctx, const AccelerationStructure& blas,
+                                             const std::string& name);
+
+ private:
+  Buffer storage_;
+  DeviceHandle<VkAccelerationStructureKHR> as_;
+  VkDeviceAddress address_ = 0;
+  static AccelerationStructure create(const Context& ctx, VkAccelerationStructureTypeKHR type,
+                                      VkDeviceSize size, const std::string& name);
+};
+
+}  // namespace sm::vk

@@ -1,0 +1,175 @@
+#include "vk/buffer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "vk/vk_error.h"
+
+namespace sm::vk {
+namespace {
+constexpr VkDeviceSize kMinSize = 16;
+constexpr VkDeviceSize kStagingChunk = 64ull << 20;
+}  // namespace
+
+Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+               const std::string& name)
+    : ctx_(&ctx), size_(std::max(size, kMinSize)), name_(name) {
+  VkDevice dev = ctx.device();
+  VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bci.size = size_;
+  bci.usage = usage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+  bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer buf;
+  SM_VK(vkCreateBuffer(dev, &bci, nullptr, &buf));
+  buffer_ = DeviceHandle<VkBuffer>(dev, buf, vkDestroyBuffer);
+  ctx.setName(VK_OBJECT_TYPE_BUFFER, uint64_t(buf), name);
+
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(dev, buf, &req);
+  VkMemoryPropertyFlags want = 0, avoid = 0;
+  switch (use) {
+    case MemoryUse::Device:
+      want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+      break;
+    case MemoryUse::Upload:
+      want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+      avoid = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+      break;
+    case MemoryUse::Readback:
+      want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+      break;
+  }
+  uint32_t type;
+  try {
+    type = ctx.memoryType(req.memoryTypeBits, want, avoid);
+  } catch (const VulkanError&) {
+    type = ctx.memoryType(req.memoryTypeBits,
+                          use == MemoryUse::Device ? 0 : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+  }
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.pNext = &flags;
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = type;
+  VkDeviceMemory mem;
+  VkResult r = vkAllocateMemory(dev, &ai, nullptr, &mem);
+  if (r != VK_SUCCESS)
+    throw DeviceMemoryError(
+        "cannot allocate " + std::to_string(req.size >> 20) + " MiB of device memory for " + name,
+        r);
+  memory_ = DeviceHandle<VkDeviceMemory>(dev, mem, vkFreeMemory);
+  ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, uint64_t(mem), name);
+  SM_VK(vkBindBufferMemory(dev, buf, mem, 0));
+
+  VkMemoryPropertyFlags got;
+  {
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mp);
+    got = mp.memoryTypes[type].propertyFlags;
+  }
+  bool mappable =
+      (got & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (got & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  if (use == MemoryUse::Device && ctx.forceStaging()) mappable = false;
+  if (mappable) SM_VK(vkMapMemory(dev, mem, 0, VK_WHOLE_SIZE, 0, &mapped_));
+
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buf;
+  address_ = vkGetBufferDeviceAddress(dev, &info);
+}
+
+Buffer& Buffer::operator=(Buffer&& o) noexcept {
+  if (this != &o) {
+    if (mapped_ && memory_) vkUnmapMemory(ctx_->device(), memory_.get());
+    buffer_ = std::move(o.buffer_);
+    memory_ = std::move(o.memory_);
+    ctx_ = o.ctx_;
+    size_ = o.size_;
+    address_ = o.address_;
+    mapped_ = std::exchange(o.mapped_, nullptr);
+    name_ = std::move(o.name_);
+  }
+  return *this;
+}
+
+Buffer::~Buffer() {
+  if (mapped_ && memory_) vkUnmapMemory(ctx_->device(), memory_.get());
+}
+
+void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
+  if (bytes == 0) return;
+  if (offset + bytes > size_)
+    throw VulkanError("upload past the end of buffer " + name_, VK_ERROR_UNKNOWN);
+  if (mapped_) {
+    std::memcpy(static_cast<uint8_t*>(mapped_) + offset, data, bytes);
+    return;
+  }
+  VkDeviceSize chunk = std::min(bytes, kStagingChunk);
+  Buffer staging(*ctx_, chunk, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload,
+                 name_ + " (staging)");
+  for (VkDeviceSize done = 0; done < bytes; done += chunk) {
+    VkDeviceSize n = std::min(chunk, bytes - done);
+    std::memcpy(staging.mapped(), static_cast<const uint8_t*>(data) + done, n);
+    ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+      VkBufferCopy copy{0, offset + done, n};
+      vkCmdCopyBuffer(cmd, staging.handle(), handle(), 1, &copy);
+    });
+  }
+}
+
+void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
+  if (bytes == 0) return;
+  if (offset + bytes > size_)
+    throw VulkanError("download past the end of buffer " + name_, VK_ERROR_UNKNOWN);
+  if (mapped_) {
+    std::memcpy(data, static_cast<const uint8_t*>(mapped_) + offset, bytes);
+    return;
+  }
+  VkDeviceSize chunk = std::min(bytes, kStagingChunk);
+  Buffer staging(*ctx_, chunk, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
+                 name_ + " (readback)");
+  for (VkDeviceSize done = 0; done < bytes; done += chunk) {
+    VkDeviceSize n = std::min(chunk, bytes - done);
+    ctx_->submitAndWait([&](VkCommandBuffer cmd) {
+      VkBufferCopy copy{offset + done, 0, n};
+      vkCmdCopyBuffer(cmd, handle(), staging.handle(), 1, &copy);
+    });
+    std::memcpy(static_cast<uint8_t*>(data) + done, staging.mapped(), n);
+  }
+}
+
+void Buffer::fill(uint32_t value) {
+  ctx_->submitAndWait(
+      [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, handle(), 0, VK_WHOLE_SIZE, value); });
+}
+
+namespace {
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess,
+             VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
+  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  mb.srcAccessMask = srcAccess;
+  mb.dstAccessMask = dstAccess;
+  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+}  // namespace
+
+void computeBarrier(VkCommandBuffer cmd) {
+  barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+void transferToComputeBarrier(VkCommandBuffer cmd) {
+  barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+void computeToTransferBarrier(VkCommandBuffer cmd) {
+  barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+}
+
+}  // namespace sm::vk

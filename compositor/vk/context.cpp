@@ -1,0 +1,425 @@
+#include "vk/context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+#include "vk/vk_error.h"
+
+namespace sm::vk {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+std::vector<const char*> requiredDeviceExtensions(const ContextOptions& o) {
+  std::vector<const char*> ext;
+  if (o.requireRayQuery) {
+    ext.push_back(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
+    ext.push_back(VK_KHR_RAY_QUERY_EXTENSION_NAME);
+    ext.push_back(VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
+  }
+  if (o.swapchain) ext.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  return ext;
+}
+
+// Feature chain we query and then enable, kept in one struct so pNext pointers stay valid.
+struct FeatureChain {
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayQueryFeaturesKHR rq{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  explicit FeatureChain(bool rayQuery) {
+    f2.pNext = &v12;
+    if (rayQuery) {
+      v12.pNext = &as;
+      as.pNext = &rq;
+    }
+  }
+  FeatureChain(const FeatureChain&) = delete;
+};
+
+bool hasExtension(VkPhysicalDevice pd, const char* name) {
+  uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> ext(n);
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, ext.data());
+  return std::any_of(ext.begin(), ext.end(),
+                     [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::vector<std::string> missingFor(VkPhysicalDevice pd, const ContextOptions& o) {
+  std::vector<std::string> missing;
+  VkPhysicalDeviceProperties p;
+  vkGetPhysicalDeviceProperties(pd, &p);
+  if (p.apiVersion < VK_API_VERSION_1_2) missing.push_back("Vulkan 1.2");
+  for (const char* e : requiredDeviceExtensions(o))
+    if (!hasExtension(pd, e)) missing.push_back(e);
+  if (!missing.empty()) return missing;
+  FeatureChain fc(o.requireRayQuery);
+  vkGetPhysicalDeviceFeatures2(pd, &fc.f2);
+  if (!fc.v12.bufferDeviceAddress) missing.push_back("bufferDeviceAddress");
+  if (!fc.v12.scalarBlockLayout) missing.push_back("scalarBlockLayout");
+  if (!fc.f2.features.shaderInt64) missing.push_back("shaderInt64");
+  if (o.requireRayQuery && !fc.as.accelerationStructure) missing.push_back("accelerationStructure");
+  if (o.requireRayQuery && !fc.rq.rayQuery) missing.push_back("rayQuery");
+  return missing;
+}
+
+int typeRank(VkPhysicalDeviceType t) {
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
+  }
+}
+
+const char* typeName(VkPhysicalDeviceType t) {
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
+  }
+}
+
+bool layerAvailable(const char* name) {
+  uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool instanceExtensionAvailable(const char* name) {
+  uint32_t n = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> ext(n);
+  vkEnumerateInstanceExtensionProperties(nullptr, &n, ext.data());
+  return std::any_of(ext.begin(), ext.end(),
+                     [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+VkInstance plainInstance() {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "shellmarch";
+  app.apiVersion = VK_API_VERSION_1_2;
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pApplicationInfo = &app;
+  VkInstance inst = VK_NULL_HANDLE;
+  SM_VK(vkCreateInstance(&ci, nullptr, &inst));
+  return inst;
+}
+
+}  // namespace
+
+bool envFlag(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+std::vector<DeviceReport> Context::listDevices(const ContextOptions& o) {
+  VkInstance inst = plainInstance();
+  uint32_t n = 0;
+  vkEnumeratePhysicalDevices(inst, &n, nullptr);
+  std::vector<VkPhysicalDevice> devs(n);
+  vkEnumeratePhysicalDevices(inst, &n, devs.data());
+  std::vector<DeviceReport> out;
+  for (uint32_t i = 0; i < n; ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devs[i], &p);
+    out.push_back({i, p.deviceName, p.deviceType, missingFor(devs[i], o)});
+  }
+  vkDestroyInstance(inst, nullptr);
+  return out;
+}
+
+Context::Context(const ContextOptions& options) {
+  ContextOptions o = options;
+  o.validation = o.validation || envFlag("SHELLMARCH_VALIDATION");
+  forceStaging_ = o.forceStaging || envFlag("SHELLMARCH_FORCE_STAGING");
+  try {
+    createInstance(o);
+    pickDevice(o);
+    createDevice(o);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+Context::~Context() {
+  release();
+}
+
+void Context::release() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+    messenger_ = VK_NULL_HANDLE;
+  }
+  if (instance_) {
+    vkDestroyInstance(instance_, nullptr);
+    instance_ = VK_NULL_HANDLE;
+  }
+}
+
+void Context::createInstance(const ContextOptions& o) {
+  std::vector<const char*> layers, ext;
+  for (const auto& e : o.instanceExtensions) ext.push_back(e.c_str());
+  debugUtils_ = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (debugUtils_) ext.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  validation_ = o.validation;
+  if (validation_) {
+    if (!layerAvailable(kValidationLayer))
+      throw VulkanError(std::string("validation requested but ") + kValidationLayer +
+                            " is not installed (Debian: vulkan-validationlayers)",
+                        VK_ERROR_LAYER_NOT_PRESENT);
+    layers.push_back(kValidationLayer);
+    ext.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+  }
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "shellmarch";
+  app.pEngineName = "shellmarch";
+  app.apiVersion = VK_API_VERSION_1_2;
+  VkValidationFeatureEnableEXT enables[] = {
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                        VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                    VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  mci.pfnUserCallback = &Context::onMessage;
+  mci.pUserData = this;
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pApplicationInfo = &app;
+  ci.enabledLayerCount = uint32_t(layers.size());
+  ci.ppEnabledLayerNames = layers.data();
+  ci.enabledExtensionCount = uint32_t(ext.size());
+  ci.ppEnabledExtensionNames = ext.data();
+  // Validation features go in the instance's pNext chain; the messenger there also catches
+  // messages from vkCreateInstance itself.
+  if (validation_) {
+    features.pNext = &mci;
+    ci.pNext = &features;
+  }
+  SM_VK(vkCreateInstance(&ci, nullptr, &instance_));
+  if (validation_ && debugUtils_) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    if (create) SM_VK(create(instance_, &mci, nullptr, &messenger_));
+  }
+}
+
+void Context::pickDevice(const ContextOptions& o) {
+  uint32_t n = 0;
+  vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+  std::vector<VkPhysicalDevice> devs(n);
+  vkEnumeratePhysicalDevices(instance_, &n, devs.data());
+  std::ostringstream report;
+  int best = -1, bestRank = 99;
+  bool byIndex = !o.device.empty() && std::all_of(o.device.begin(), o.device.end(), ::isdigit);
+  for (uint32_t i = 0; i < n; ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devs[i], &p);
+    auto missing = missingFor(devs[i], o);
+    report << "\n  [" << i << "] " << p.deviceName << " (" << typeName(p.deviceType) << ")";
+    if (missing.empty()) {
+      report << ": usable";
+    } else {
+      report << ": lacks";
+      for (auto& m : missing) report << " " << m;
+    }
+    if (!o.device.empty()) {
+      bool match = byIndex ? std::to_string(i) == o.device
+                           : std::strstr(p.deviceName, o.device.c_str()) != nullptr;
+      if (!match) continue;
+    }
+    if (missing.empty() && typeRank(p.deviceType) < bestRank) {
+      best = int(i);
+      bestRank = typeRank(p.deviceType);
+    }
+  }
+  if (best < 0) {
+    std::string what = o.device.empty() ? std::string("no Vulkan device has what shellmarch needs")
+                                        : "--device " + o.device + ": no usable device matches";
+    if (n == 0) what = "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)";
+    throw VulkanError(what + report.str(), VK_ERROR_FEATURE_NOT_PRESENT);
+  }
+  physical_ = devs[best];
+  vkGetPhysicalDeviceProperties(physical_, &props_);
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memProps_);
+  VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  p2.pNext = &sub;
+  vkGetPhysicalDeviceProperties2(physical_, &p2);
+  subgroupSize_ = sub.subgroupSize;
+}
+
+void Context::createDevice(const ContextOptions& o) {
+  uint32_t nq = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nq, nullptr);
+  std::vector<VkQueueFamilyProperties> qf(nq);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nq, qf.data());
+  int family = -1;
+  for (uint32_t i = 0; i < nq && family < 0; ++i)
+    if ((qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && (qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT))
+      family = int(i);
+  for (uint32_t i = 0; i < nq && family < 0; ++i)
+    if (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) family = int(i);
+  if (family < 0)
+    throw VulkanError("the device has no compute queue", VK_ERROR_FEATURE_NOT_PRESENT);
+  queueFamily_ = uint32_t(family);
+
+  FeatureChain have(o.requireRayQuery);
+  vkGetPhysicalDeviceFeatures2(physical_, &have.f2);
+  FeatureChain want(o.requireRayQuery);
+  want.f2.features.shaderInt64 = VK_TRUE;
+  want.f2.features.shaderFloat64 = have.f2.features.shaderFloat64;
+  float64_ = have.f2.features.shaderFloat64;
+  want.v12.bufferDeviceAddress = VK_TRUE;
+  want.v12.scalarBlockLayout = VK_TRUE;
+  want.v12.hostQueryReset = have.v12.hostQueryReset;
+  if (o.requireRayQuery) {
+    want.as.accelerationStructure = VK_TRUE;
+    want.rq.rayQuery = VK_TRUE;
+    rayQuery_ = true;
+  }
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qci.queueFamilyIndex = queueFamily_;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+  auto ext = requiredDeviceExtensions(o);
+  VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  dci.pNext = &want.f2;
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  dci.enabledExtensionCount = uint32_t(ext.size());
+  dci.ppEnabledExtensionNames = ext.data();
+  SM_VK(vkCreateDevice(physical_, &dci, nullptr, &device_));
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  auto load = [&](auto& fn, const char* name) {
+    fn =
+        reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
+  };
+  if (o.requireRayQuery) {
+    load(fn_.createAccelerationStructure, "vkCreateAccelerationStructureKHR");
+    load(fn_.destroyAccelerationStructure, "vkDestroyAccelerationStructureKHR");
+    load(fn_.getAccelerationStructureBuildSizes, "vkGetAccelerationStructureBuildSizesKHR");
+    load(fn_.cmdBuildAccelerationStructures, "vkCmdBuildAccelerationStructuresKHR");
+    load(fn_.getAccelerationStructureDeviceAddress, "vkGetAccelerationStructureDeviceAddressKHR");
+    load(fn_.cmdWriteAccelerationStructuresProperties,
+         "vkCmdWriteAccelerationStructuresPropertiesKHR");
+    load(fn_.cmdCopyAccelerationStructure, "vkCmdCopyAccelerationStructureKHR");
+  }
+  if (debugUtils_)
+    fn_.setDebugUtilsObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = queueFamily_;
+  SM_VK(vkCreateCommandPool(device_, &pci, nullptr, &pool_));
+}
+
+uint32_t Context::memoryType(uint32_t bits, VkMemoryPropertyFlags want,
+                             VkMemoryPropertyFlags avoid) const {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (uint32_t i = 0; i < memProps_.memoryTypeCount; ++i) {
+      VkMemoryPropertyFlags f = memProps_.memoryTypes[i].propertyFlags;
+      if (!(bits & (1u << i)) || (f & want) != want) continue;
+      if (pass == 0 && (f & avoid)) continue;
+      return i;
+    }
+  }
+  throw VulkanError("no suitable memory type", VK_ERROR_FEATURE_NOT_PRESENT);
+}
+
+void Context::setName(VkObjectType type, uint64_t handle, const std::string& name) const {
+  if (!fn_.setDebugUtilsObjectName || !handle) return;
+  VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = name.c_str();
+  fn_.setDebugUtilsObjectName(device_, &info);
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  SM_VK(vkAllocateCommandBuffers(device_, &ai, &cmd));
+  struct Free {
+    VkDevice d;
+    VkCommandPool p;
+    VkCommandBuffer c;
+    ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
+  } guard{device_, pool_, cmd};
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  SM_VK(vkBeginCommandBuffer(cmd, &bi));
+  record(cmd);
+  SM_VK(vkEndCommandBuffer(cmd));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  SM_VK(vkCreateFence(device_, &fci, nullptr, &fence));
+  DeviceHandle<VkFence> fenceGuard(device_, fence, vkDestroyFence);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  SM_VK(vkQueueSubmit(queue_, 1, &si, fence));
+  SM_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+}
+
+std::vector<std::string> Context::validationMessages() const {
+  std::lock_guard lock(messagesMutex_);
+  return messages_;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                  VkDebugUtilsMessageTypeFlagsEXT,
+                                                  const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                  void* user) {
+  auto* self = static_cast<Context*>(user);
+  bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  (error ? self->errors_ : self->warnings_)++;
+  std::string msg = std::string(error ? "validation error: " : "validation warning: ") +
+                    (data && data->pMessage ? data->pMessage : "");
+  std::fprintf(stderr, "shellmarch: %s\n", msg.c_str());
+  std::lock_guard lock(self->messagesMutex_);
+  if (self->messages_.size() < 100) self->messages_.push_back(msg);
+  return VK_FALSE;
+}
+
+}  // namespace sm::vk

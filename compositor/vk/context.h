@@ -1,0 +1,122 @@
+// Vulkan instance, device and queue: the one object every GPU module receives.
+//
+// Device choice: devices that have every required extension and feature are ranked discrete,
+// integrated, virtual, CPU (lavapipe); ContextOptions::device overrides with an index or a name
+// substring. When none qualifies the error lists every device and what it lacks.
+// Validation: with ContextOptions::validation (or SHELLMARCH_VALIDATION=1) the Khronos layer runs
+// with synchronization validation; every message is printed and counted, and tests fail on them.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/handle.h"
+
+namespace sm::vk {
+
+struct ContextOptions {
+  bool validation = false;      // also forced on by SHELLMARCH_VALIDATION=1
+  bool requireRayQuery = true;  // ray queries + acceleration structures (renderer); not needed
+                                // by the compositor alone
+  std::string device;           // "" = best, "N" = index N, else a substring of the name
+  std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a window
+  bool swapchain = false;                       // enable VK_KHR_swapchain
+  bool forceStaging = false;                    // never map device buffers: exercise staging copies
+};
+
+// Extension entry points, loaded with vkGetDeviceProcAddr.
+struct DeviceFunctions {
+  PFN_vkCreateAccelerationStructureKHR createAccelerationStructure = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR destroyAccelerationStructure = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR getAccelerationStructureBuildSizes = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR cmdBuildAccelerationStructures = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR getAccelerationStructureDeviceAddress = nullptr;
+  PFN_vkCmdWriteAccelerationStructuresPropertiesKHR cmdWriteAccelerationStructuresProperties =
+      nullptr;
+  PFN_vkCmdCopyAccelerationStructureKHR cmdCopyAccelerationStructure = nullptr;
+  PFN_vkSetDebugUtilsObjectNameEXT setDebugUtilsObjectName = nullptr;
+};
+
+struct DeviceReport {
+  uint32_t index;
+  std::string name;
+  VkPhysicalDeviceType type;
+  std::vector<std::string> missing;  // empty = usable
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const DeviceFunctions& fn() const { return fn_; }
+  const VkPhysicalDeviceProperties& properties() const { return props_; }
+  std::string deviceName() const { return props_.deviceName; }
+  bool isCpu() const { return props_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+  bool hasFloat64() const { return float64_; }
+  bool hasRayQuery() const { return rayQuery_; }
+  bool forceStaging() const { return forceStaging_; }
+  uint32_t subgroupSize() const { return subgroupSize_; }
+  double timestampPeriodNs() const { return props_.limits.timestampPeriod; }
+
+  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags want,
+                      VkMemoryPropertyFlags avoid = 0) const;
+  void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
+
+  // Records commands into a one-time command buffer, submits and waits.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // Validation messages seen so far (errors and warnings), for tests.
+  uint64_t validationErrors() const { return errors_; }
+  uint64_t validationWarnings() const { return warnings_; }
+  std::vector<std::string> validationMessages() const;
+  bool validationEnabled() const { return validation_; }
+
+  // Every physical device and what it lacks for these options.
+  static std::vector<DeviceReport> listDevices(const ContextOptions& options);
+
+ private:
+  void release();
+  void createInstance(const ContextOptions& o);
+  void pickDevice(const ContextOptions& o);
+  void createDevice(const ContextOptions& o);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                  VkDebugUtilsMessageTypeFlagsEXT types,
+                                                  const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                  void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties props_{};
+  VkPhysicalDeviceMemoryProperties memProps_{};
+  DeviceFunctions fn_;
+  bool validation_ = false, debugUtils_ = false, float64_ = false, rayQuery_ = false;
+  bool forceStaging_ = false;
+  uint32_t subgroupSize_ = 1;
+  std::atomic<uint64_t> errors_{0}, warnings_{0};
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+};
+
+// True when the environment variable is set to a non-empty value other than "0".
+bool envFlag(const char* name);
+
+}  // namespace sm::vk

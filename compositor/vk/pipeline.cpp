@@ -1,0 +1,126 @@
+#include "vk/pipeline.h"
+
+#include "vk/vk_error.h"
+
+namespace sm::vk {
+
+ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
+    : ctx_(&ctx), pushBytes_(d.pushConstantBytes) {
+  VkDevice dev = ctx.device();
+  VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  smci.codeSize = d.spirv.size_bytes();
+  smci.pCode = d.spirv.data();
+  VkShaderModule mod;
+  SM_VK(vkCreateShaderModule(dev, &smci, nullptr, &mod));
+  module_ = DeviceHandle<VkShaderModule>(dev, mod, vkDestroyShaderModule);
+  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, uint64_t(mod), d.name);
+
+  std::vector<VkDescriptorSetLayout> setLayouts;
+  if (d.accelerationStructure) {
+    VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1,
+                                   VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = 1;
+    lci.pBindings = &b;
+    VkDescriptorSetLayout sl;
+    SM_VK(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &sl));
+    setLayout_ = DeviceHandle<VkDescriptorSetLayout>(dev, sl, vkDestroyDescriptorSetLayout);
+    setLayouts.push_back(sl);
+
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1};
+    VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pci.maxSets = 1;
+    pci.poolSizeCount = 1;
+    pci.pPoolSizes = &ps;
+    VkDescriptorPool pool;
+    SM_VK(vkCreateDescriptorPool(dev, &pci, nullptr, &pool));
+    pool_ = DeviceHandle<VkDescriptorPool>(dev, pool, vkDestroyDescriptorPool);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &sl;
+    SM_VK(vkAllocateDescriptorSets(dev, &ai, &set_));
+  }
+  VkPushConstantRange pcr{VK_SHADER_STAGE_COMPUTE_BIT, 0, d.pushConstantBytes};
+  VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  plci.setLayoutCount = uint32_t(setLayouts.size());
+  plci.pSetLayouts = setLayouts.data();
+  plci.pushConstantRangeCount = d.pushConstantBytes ? 1 : 0;
+  plci.pPushConstantRanges = &pcr;
+  VkPipelineLayout pl;
+  SM_VK(vkCreatePipelineLayout(dev, &plci, nullptr, &pl));
+  layout_ = DeviceHandle<VkPipelineLayout>(dev, pl, vkDestroyPipelineLayout);
+
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < d.specialization.size(); ++i)
+    entries.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
+  VkSpecializationInfo si{uint32_t(entries.size()), entries.data(),
+                          d.specialization.size() * sizeof(uint32_t), d.specialization.data()};
+  VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  cci.stage.module = mod;
+  cci.stage.pName = "main";
+  cci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
+  cci.layout = pl;
+  VkPipeline p;
+  SM_VK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cci, nullptr, &p));
+  pipeline_ = DeviceHandle<VkPipeline>(dev, p, vkDestroyPipeline);
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
+}
+
+void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) {
+  VkWriteDescriptorSetAccelerationStructureKHR as{
+      VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+  as.accelerationStructureCount = 1;
+  as.pAccelerationStructures = &tlas;
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.pNext = &as;
+  w.dstSet = set_;
+  w.dstBinding = 0;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+  vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
+}
+
+void ComputePipeline::dispatch(VkCommandBuffer cmd, uint32_t gx, uint32_t gy, uint32_t gz,
+                               const void* push, uint32_t pushBytes) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  if (set_)
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
+                            nullptr);
+  if (pushBytes)
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
+  if (gx && gy && gz) vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+TimestampQueries::TimestampQueries(const Context& ctx, uint32_t count) : ctx_(&ctx), count_(count) {
+  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qci.queryCount = count;
+  VkQueryPool pool;
+  SM_VK(vkCreateQueryPool(ctx.device(), &qci, nullptr, &pool));
+  pool_ = DeviceHandle<VkQueryPool>(ctx.device(), pool, vkDestroyQueryPool);
+}
+
+void TimestampQueries::reset(VkCommandBuffer cmd) {
+  vkCmdResetQueryPool(cmd, pool_.get(), 0, count_);
+}
+
+void TimestampQueries::write(VkCommandBuffer cmd, uint32_t index) const {
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_.get(), index);
+}
+
+std::vector<uint64_t> TimestampQueries::results() const {
+  std::vector<uint64_t> r(count_);
+  SM_VK(vkGetQueryPoolResults(ctx_->device(), pool_.get(), 0, count_, r.size() * sizeof(uint64_t),
+                              r.data(), sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return r;
+}
+
+double TimestampQueries::ms(const std::vector<uint64_t>& r, uint32_t a, uint32_t b) const {
+  return double(r[b] - r[a]) * ctx_->timestampPeriodNs() * 1e-6;
+}
+
+}  // namespace sm::vk
