@@ -115,12 +115,12 @@ AccelerationStructure AccelerationStructure::buildTriangles(
 }
 
 AccelerationStructure AccelerationStructure::buildInstance(const Context& ctx,
-                                                           const AccelerationStructure& blas,
+                                                           const AccelerationStructure* blas,
                                                            const std::string& name) {
   VkAccelerationStructureInstanceKHR inst{};
   inst.transform.matrix[0][0] = inst.transform.matrix[1][1] = inst.transform.matrix[2][2] = 1.0f;
   inst.mask = 0xFF;
-  inst.accelerationStructureReference = blas.address();
+  inst.accelerationStructureReference = blas ? blas->address() : 0;
   Buffer instances(
       ctx, sizeof inst,
       VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | kStorageUsage,
@@ -140,7 +140,7 @@ AccelerationStructure AccelerationStructure::buildInstance(const Context& ctx,
   build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
   build.geometryCount = 1;
   build.pGeometries = &geom;
-  uint32_t count = 1;
+  uint32_t count = blas ? 1 : 0;
   VkAccelerationStructureBuildSizesInfoKHR sizes{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
   ctx.fn().getAccelerationStructureBuildSizes(
@@ -151,7 +151,7 @@ AccelerationStructure AccelerationStructure::buildInstance(const Context& ctx,
                  name + " scratch");
   build.dstAccelerationStructure = tlas.handle();
   build.scratchData.deviceAddress = scratch.address();
-  VkAccelerationStructureBuildRangeInfoKHR range{1, 0, 0, 0};
+  VkAccelerationStructureBuildRangeInfoKHR range{count, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     ctx.fn().cmdBuildAccelerationStructures(cmd, 1, &build, &ranges);

@@ -24,8 +24,9 @@ class AccelerationStructure {
                                               uint32_t vertexCount, const Buffer& indices,
                                               uint32_t triangleCount, bool compact,
                                               const std::string& name);
-  // TLAS with one identity instance of `blas`.
-  static AccelerationStructure buildInstance(const Context& ctx, const AccelerationStructure& blas,
+  // TLAS with one identity instance of `blas`, or with no instance at all (blas == nullptr), so that
+  // a rank with no elements runs the same shaders and simply finds nothing.
+  static AccelerationStructure buildInstance(const Context& ctx, const AccelerationStructure* blas,
                                              const std::string& name);
 
  private:

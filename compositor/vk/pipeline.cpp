@@ -52,10 +52,13 @@ ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
   layout_ = DeviceHandle<VkPipelineLayout>(dev, pl, vkDestroyPipelineLayout);
 
   std::vector<VkSpecializationMapEntry> entries;
-  for (uint32_t i = 0; i < d.specialization.size(); ++i)
-    entries.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
+  std::vector<uint32_t> values;
+  for (const SpecConstant& c : d.specialization) {
+    entries.push_back({c.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+    values.push_back(c.value);
+  }
   VkSpecializationInfo si{uint32_t(entries.size()), entries.data(),
-                          d.specialization.size() * sizeof(uint32_t), d.specialization.data()};
+                          values.size() * sizeof(uint32_t), values.data()};
   VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -111,9 +114,9 @@ void TimestampQueries::write(VkCommandBuffer cmd, uint32_t index) const {
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_.get(), index);
 }
 
-std::vector<uint64_t> TimestampQueries::results() const {
-  std::vector<uint64_t> r(count_);
-  SM_VK(vkGetQueryPoolResults(ctx_->device(), pool_.get(), 0, count_, r.size() * sizeof(uint64_t),
+std::vector<uint64_t> TimestampQueries::results(uint32_t n) const {
+  std::vector<uint64_t> r(n);
+  SM_VK(vkGetQueryPoolResults(ctx_->device(), pool_.get(), 0, n, r.size() * sizeof(uint64_t),
                               r.data(), sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   return r;

@@ -1,5 +1,5 @@
 // Compute pipelines built from embedded SPIR-V, specialised to the scene with specialization
-// constants (constant_id = index into `specialization`), parameters passed as push constants
+// constants, parameters passed as push constants
 // (buffer addresses and small values). A pipeline that traces rays owns one descriptor set with the
 // top-level acceleration structure at set 0, binding 0.
 #pragma once
@@ -13,10 +13,15 @@
 
 namespace sm::vk {
 
+struct SpecConstant {
+  uint32_t id;     // constant_id in the shader
+  uint32_t value;  // 32-bit (bool: 0 or 1)
+};
+
 struct PipelineDesc {
   std::string name;
   std::span<const uint32_t> spirv;
-  std::vector<uint32_t> specialization;  // 32-bit constants, constant_id 0, 1, 2, ...
+  std::vector<SpecConstant> specialization;
   uint32_t pushConstantBytes = 0;
   bool accelerationStructure = false;  // set 0, binding 0
 };
@@ -60,8 +65,8 @@ class TimestampQueries {
   TimestampQueries(const Context& ctx, uint32_t count);
   void reset(VkCommandBuffer cmd);
   void write(VkCommandBuffer cmd, uint32_t index) const;
-  // Milliseconds between timestamps a and b (after the work has completed).
-  std::vector<uint64_t> results() const;
+  // The first n timestamps (all written by completed work); ms() between two of them.
+  std::vector<uint64_t> results(uint32_t n) const;
   double ms(const std::vector<uint64_t>& r, uint32_t a, uint32_t b) const;
 
  private:

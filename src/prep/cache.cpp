@@ -40,6 +40,7 @@ enum : uint32_t {
   kShellRefs,
   kShellOther,
   kCounts,
+  kShellAdjacency,
   kElements = 16,
   kNeighbors = 32
 };
@@ -129,6 +130,9 @@ void validate(const PreparedRank& r) {
     if (v >= nv) throw Corrupt{"shell vertex id out of range"};
   for (uint32_t v : r.shellOther)
     if (v != ~0u && v >= nv) throw Corrupt{"shell quad vertex out of range"};
+  if (r.shellAdjacency.size() != 3 * nt) throw Corrupt{"shell adjacency count does not match"};
+  for (uint32_t a : r.shellAdjacency)
+    if (a != ~0u && a >= nt) throw Corrupt{"shell adjacency out of range"};
   for (uint32_t ref : r.shellRefs)
     if (gpu::smRefIndex(ref) >= r.elementCount[gpu::smRefType(ref)])
       throw Corrupt{"shell element reference out of range"};
@@ -165,6 +169,7 @@ void writeCache(const std::string& path, const PreparedRank& r, uint64_t key) {
   w.section(kShellIndices, r.shellIndices);
   w.section(kShellRefs, r.shellRefs);
   w.section(kShellOther, r.shellOther);
+  w.section(kShellAdjacency, r.shellAdjacency);
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
   h.version = kCacheFormatVersion;
@@ -227,6 +232,7 @@ CacheRead parseCache(const uint8_t* data, size_t size, uint64_t key) {
     r.shellIndices = rd.section<uint32_t>(kShellIndices);
     r.shellRefs = rd.section<uint32_t>(kShellRefs);
     r.shellOther = rd.section<uint32_t>(kShellOther);
+    r.shellAdjacency = rd.section<uint32_t>(kShellAdjacency);
     if (!rd.atEnd()) throw Corrupt{"trailing bytes"};
     validate(r);
     out.status = CacheStatus::Hit;

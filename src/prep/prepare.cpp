@@ -74,6 +74,7 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
 
   timer.reset();
   Shell shell = extractShell(elements, r.neighbors, r.positions);
+  r.shellAdjacency = shellAdjacency(shell.indices);
   r.shellIndices = std::move(shell.indices);
   r.shellRefs = std::move(shell.refs);
   if (options.compact) r.shellOther = std::move(shell.other);

@@ -46,6 +46,7 @@ struct PreparedRank {
   std::vector<uint32_t> shellIndices;
   std::vector<uint32_t> shellRefs;
   std::vector<uint32_t> shellOther;
+  std::vector<uint32_t> shellAdjacency;  // 3 per triangle (see shell.h)
 
   uint64_t numVertices() const { return vertexSource.size(); }
   uint64_t numElements() const;

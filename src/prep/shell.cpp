@@ -72,4 +72,30 @@ void sortShellSpatially(Shell& shell, const std::vector<float>& positions) {
   shell = std::move(sorted);
 }
 
+std::vector<uint32_t> shellAdjacency(const std::vector<uint32_t>& indices) {
+  const size_t nt = indices.size() / 3;
+  struct Edge {
+    uint64_t key;    // min << 32 | max
+    uint32_t slot;   // 3 * triangle + k
+  };
+  std::vector<Edge> edges(3 * nt);
+  for (size_t t = 0; t < nt; ++t)
+    for (uint32_t k = 0; k < 3; ++k) {
+      uint32_t a = indices[3 * t + k], b = indices[3 * t + (k + 1) % 3];
+      edges[3 * t + k] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(3 * t + k)};
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.key < y.key; });
+  std::vector<uint32_t> adj(3 * nt, ~0u);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j].key == edges[i].key) ++j;
+    if (j - i == 2) {
+      adj[edges[i].slot] = edges[i + 1].slot / 3;
+      adj[edges[i + 1].slot] = edges[i].slot / 3;
+    }
+    i = j;
+  }
+  return adj;
+}
+
 }  // namespace sm::prep

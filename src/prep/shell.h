@@ -15,6 +15,11 @@ struct Shell {
   std::vector<uint32_t> other;    // 4th quad vertex per triangle, ~0u for triangle faces
 };
 
+// For triangle i and edge k (vertices k, k+1 mod 3), the shell triangle on the other side of that
+// edge, or ~0u (open or non-manifold edge). The GPU walks this when the hardware's entry triangle
+// and the exact crossing predicate disagree about a ray that passes within rounding of an edge.
+std::vector<uint32_t> shellAdjacency(const std::vector<uint32_t>& indices);
+
 // positions: rebased float xyz of this rank's vertices (for the spatial sort).
 Shell extractShell(const ElementArrays& elements, const ElementArrays& neighbors,
                    const std::vector<float>& positions);

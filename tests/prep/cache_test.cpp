@@ -32,6 +32,7 @@ void expectEqual(const PreparedRank& a, const PreparedRank& b) {
   EXPECT_EQ(a.shellIndices, b.shellIndices);
   EXPECT_EQ(a.shellRefs, b.shellRefs);
   EXPECT_EQ(a.shellOther, b.shellOther);
+  EXPECT_EQ(a.shellAdjacency, b.shellAdjacency);
   EXPECT_EQ(a.frame.origin, b.frame.origin);
   EXPECT_EQ(a.compact, b.compact);
 }

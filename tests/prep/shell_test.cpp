@@ -46,6 +46,29 @@ TEST(Shell, TetGridShellIsOutwardAndClosed) {
   for (float p : r.positions) EXPECT_LE(std::abs(p), 0.5f + 1e-6f);
 }
 
+// A closed shell: every edge has exactly one neighbour, and adjacency is symmetric and shares the edge.
+TEST(Shell, AdjacencyIsSymmetricOnAClosedShell) {
+  auto m = test::hexGrid(2);
+  auto r = prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{}).rank;
+  ASSERT_EQ(r.shellAdjacency.size(), 3 * r.numShellTriangles());
+  for (uint32_t t = 0; t < r.numShellTriangles(); ++t) {
+    for (uint32_t k = 0; k < 3; ++k) {
+      uint32_t n = r.shellAdjacency[3 * t + k];
+      ASSERT_NE(n, ~0u);
+      uint32_t a = r.shellIndices[3 * t + k], b = r.shellIndices[3 * t + (k + 1) % 3];
+      int back = 0;
+      for (uint32_t j = 0; j < 3; ++j) {
+        if (r.shellAdjacency[3 * n + j] != t) continue;
+        ++back;
+        // Consistent winding: the neighbour lists the shared edge in the opposite direction.
+        EXPECT_EQ(r.shellIndices[3 * n + j], b);
+        EXPECT_EQ(r.shellIndices[3 * n + (j + 1) % 3], a);
+      }
+      EXPECT_EQ(back, 1);
+    }
+  }
+}
+
 TEST(Shell, TrianglesAreSortedByMortonCode) {
   auto m = test::kuhnTetGrid(4);
   auto r = prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{}).rank;

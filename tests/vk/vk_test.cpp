@@ -33,7 +33,8 @@ void runScaleAdd(bool forceStaging) {
   if (forceStaging) {
     EXPECT_EQ(buf.mapped(), nullptr);
   }
-  ComputePipeline p(ctx, {"scale_add", test::spv::scale_add(), {7u}, sizeof(ScalePush), false});
+  ComputePipeline p(ctx,
+                    {"scale_add", test::spv::scale_add(), {{0, 7u}}, sizeof(ScalePush), false});
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     p.dispatch(cmd, groupsFor(v.size(), 64), 1, 1,
                ScalePush{buf.address(), uint32_t(v.size()), 2.0f});
@@ -74,6 +75,7 @@ TEST(Vk, DeviceErrorListsWhatEachDeviceLacks) {
 struct TracePush {
   uint64_t rays, hits;
   uint32_t n, flags;
+  float z0, dz;
 };
 
 // Two triangles at z = 0 and z = 1 over the unit square, wound in opposite directions.
@@ -89,15 +91,16 @@ TEST(Vk, RayQueryCullsFrontFacesAsTheShellTraversalAssumes) {
   Buffer vb = makeBuffer<float>(ctx, pos, "positions", asInput);
   Buffer ib = makeBuffer<uint32_t>(ctx, idx, "indices", asInput);
   auto blas = AccelerationStructure::buildTriangles(ctx, vb, 6, ib, 2, true, "blas");
-  auto tlas = AccelerationStructure::buildInstance(ctx, blas, "tlas");
+  auto tlas = AccelerationStructure::buildInstance(ctx, &blas, "tlas");
   std::vector<glm::vec2> rays = {{0.25f, 0.25f}, {0.9f, 0.9f}};
   Buffer rb = makeBuffer<glm::vec2>(ctx, rays, "rays");
   Buffer hb(ctx, rays.size() * sizeof(glm::vec4), kStorageUsage, MemoryUse::Device, "hits");
   ComputePipeline p(ctx, {"trace_rays", test::spv::trace_rays(), {}, sizeof(TracePush), true});
   p.setAccelerationStructure(tlas.handle());
-  auto trace = [&](uint32_t flags) {
+  auto trace = [&](uint32_t flags, float z0 = -1.0f, float dz = 1.0f) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      p.dispatch(cmd, 1, 1, 1, TracePush{rb.address(), hb.address(), uint32_t(rays.size()), flags});
+      p.dispatch(cmd, 1, 1, 1,
+                 TracePush{rb.address(), hb.address(), uint32_t(rays.size()), flags, z0, dz});
     });
     return hb.download<glm::vec4>();
   };
@@ -112,10 +115,37 @@ TEST(Vk, RayQueryCullsFrontFacesAsTheShellTraversalAssumes) {
   EXPECT_FLOAT_EQ(culled[0].x, 2.0f);  // front face culled: the back-facing one at z = 1
   EXPECT_EQ(culled[0].y, 1.0f);
   EXPECT_EQ(culled[0].z, 0.0f);
+  // Backward rays (along -z from z = 3): now triangle 1 (normal +z) faces them and is culled.
+  auto back = trace(kOpaque | kCullFront, 3.0f, -1.0f);
+  EXPECT_FLOAT_EQ(back[0].x, 3.0f);
+  EXPECT_EQ(back[0].y, 0.0f);
+  EXPECT_EQ(back[0].z, 0.0f);
   EXPECT_GT(blas.bytes(), 0u);
   EXPECT_EQ(ctx.validationErrors(), 0u);
   EXPECT_EQ(ctx.validationWarnings(), 0u);
 }
 
+}  // namespace
+}  // namespace sm::vk
+
+namespace sm::vk {
+namespace {
+// Pipelines from one SPIR-V module that differ only in specialization constants must differ
+// (the renderer builds count and store variants of one traversal shader this way).
+TEST(Vk, SpecializationVariantsOfOneModuleStayDistinct) {
+  ContextOptions o;
+  o.requireRayQuery = false;
+  Context ctx(o);
+  std::vector<float> v(64, 1.0f);
+  Buffer a = makeBuffer<float>(ctx, v, "a"), b = makeBuffer<float>(ctx, v, "b");
+  ComputePipeline p7(ctx, {"add7", test::spv::scale_add(), {{0, 7u}}, sizeof(ScalePush), false});
+  ComputePipeline p9(ctx, {"add9", test::spv::scale_add(), {{0, 9u}}, sizeof(ScalePush), false});
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    p7.dispatch(cmd, 1, 1, 1, ScalePush{a.address(), 64, 1.0f});
+    p9.dispatch(cmd, 1, 1, 1, ScalePush{b.address(), 64, 1.0f});
+  });
+  EXPECT_EQ(a.download<float>()[0], 8.0f);
+  EXPECT_EQ(b.download<float>()[0], 10.0f);
+}
 }  // namespace
 }  // namespace sm::vk

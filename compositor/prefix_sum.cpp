@@ -1,0 +1,44 @@
+#include "compositor/prefix_sum.h"
+
+#include "compositor_shaders.h"
+
+namespace sm::comp {
+namespace {
+constexpr uint32_t kBlock = 1024;
+struct Push {
+  uint64_t values, sums;
+  uint32_t n;
+};
+}  // namespace
+
+PrefixSum::PrefixSum(const vk::Context& ctx)
+    : ctx_(ctx),
+      blocks_(ctx, {"scan_blocks", spv::scan_blocks(), {}, sizeof(Push), false}),
+      add_(ctx, {"scan_add", spv::scan_add(), {}, sizeof(Push), false}),
+      total_(ctx, sizeof(uint32_t), vk::kStorageUsage, vk::MemoryUse::Readback, "scan total") {}
+
+void PrefixSum::recordLevel(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n, size_t level) {
+  const uint32_t groups = vk::groupsFor(n, kBlock);
+  if (sums_.size() <= level) sums_.emplace_back();
+  if (!sums_[level].valid() || sums_[level].size() < groups * sizeof(uint32_t))
+    sums_[level] = vk::Buffer(ctx_, uint64_t(groups) * 2 * sizeof(uint32_t), vk::kStorageUsage,
+                              vk::MemoryUse::Device, "scan level " + std::to_string(level));
+  VkDeviceAddress sums = sums_[level].address();
+  blocks_.dispatch(cmd, groups, 1, 1, Push{values, groups == 1 ? total_.address() : sums, n});
+  vk::computeBarrier(cmd);
+  if (groups == 1) return;
+  recordLevel(cmd, sums, groups, level + 1);
+  add_.dispatch(cmd, groups, 1, 1, Push{values, sums, n});
+  vk::computeBarrier(cmd);
+}
+
+void PrefixSum::record(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n) {
+  if (n == 0) {
+    vkCmdFillBuffer(cmd, total_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vk::transferToComputeBarrier(cmd);
+    return;
+  }
+  recordLevel(cmd, values, n, 0);
+}
+
+}  // namespace sm::comp

@@ -1,0 +1,28 @@
+// Exclusive prefix sum of uint32 values on the device (block scan, recursive over block totals).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "vk/buffer.h"
+#include "vk/pipeline.h"
+
+namespace sm::comp {
+
+class PrefixSum {
+ public:
+  explicit PrefixSum(const vk::Context& ctx);
+  // Records an in-place exclusive scan of n values at `values`; the total lands in total(), a
+  // one-uint device buffer valid after the commands complete. Buffers grow, never shrink.
+  void record(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n);
+  const vk::Buffer& total() const { return total_; }
+
+ private:
+  void recordLevel(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n, size_t level);
+  const vk::Context& ctx_;
+  vk::ComputePipeline blocks_, add_;
+  std::vector<vk::Buffer> sums_;  // one per level
+  vk::Buffer total_;
+};
+
+}  // namespace sm::comp

@@ -1,0 +1,78 @@
+// Scalar interpolation inside an element: barycentric in tetrahedra (done on the faces by the
+// marcher), VTK's isoparametric shape functions in pyramids, wedges and hexahedra, inverted by
+// Newton's method to 1e-6 in parametric space.
+#ifndef SM_INTERPOLATE_GLSL
+#define SM_INTERPOLATE_GLSL
+
+#include "shared/cell_tables.h"
+
+// Shape functions N[i] and their derivatives dN[i] = (dN/dr, dN/ds, dN/dt) at parametric point p.
+void shapeFunctions(uint type, vec3 p, out float N[8], out vec3 dN[8]) {
+  float r = p.x, s = p.y, t = p.z;
+  for (uint i = 0u; i < 8u; ++i) { N[i] = 0.0; dN[i] = vec3(0.0); }
+  if (type == SM_HEX) {
+    float rm = 1.0 - r, sm = 1.0 - s, tm = 1.0 - t;
+    N[0] = rm * sm * tm; N[1] = r * sm * tm; N[2] = r * s * tm; N[3] = rm * s * tm;
+    N[4] = rm * sm * t;  N[5] = r * sm * t;  N[6] = r * s * t;  N[7] = rm * s * t;
+    dN[0] = vec3(-sm * tm, -rm * tm, -rm * sm); dN[1] = vec3(sm * tm, -r * tm, -r * sm);
+    dN[2] = vec3(s * tm, r * tm, -r * s);       dN[3] = vec3(-s * tm, rm * tm, -rm * s);
+    dN[4] = vec3(-sm * t, -rm * t, rm * sm);    dN[5] = vec3(sm * t, -r * t, r * sm);
+    dN[6] = vec3(s * t, r * t, r * s);          dN[7] = vec3(-s * t, rm * t, rm * s);
+  } else if (type == SM_WED) {
+    float u = 1.0 - r - s, tm = 1.0 - t;
+    N[0] = u * tm; N[1] = r * tm; N[2] = s * tm; N[3] = u * t; N[4] = r * t; N[5] = s * t;
+    dN[0] = vec3(-tm, -tm, -u); dN[1] = vec3(tm, 0.0, -r); dN[2] = vec3(0.0, tm, -s);
+    dN[3] = vec3(-t, -t, u);    dN[4] = vec3(t, 0.0, r);   dN[5] = vec3(0.0, t, s);
+  } else {  // pyramid
+    float rm = 1.0 - r, sm = 1.0 - s, tm = 1.0 - t;
+    N[0] = rm * sm * tm; N[1] = r * sm * tm; N[2] = r * s * tm; N[3] = rm * s * tm; N[4] = t;
+    dN[0] = vec3(-sm * tm, -rm * tm, -rm * sm); dN[1] = vec3(sm * tm, -r * tm, -r * sm);
+    dN[2] = vec3(s * tm, r * tm, -r * s);       dN[3] = vec3(-s * tm, rm * tm, -rm * s);
+    dN[4] = vec3(0.0, 0.0, 1.0);
+  }
+}
+
+vec3 parametricCenter(uint type) {
+  if (type == SM_WED) return vec3(1.0 / 3.0, 1.0 / 3.0, 0.5);
+  if (type == SM_PYR) return vec3(0.5, 0.5, 0.2);
+  return vec3(0.5);
+}
+
+// Parametric coordinates of x in the element with corner positions P (relative to P[0] is fine:
+// pass x relative to the same origin). `p` is the starting guess and receives the result.
+void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
+  uint nv = SM_NUM_VERTS[type];
+  for (int it = 0; it < 12; ++it) {
+    float N[8];
+    vec3 dN[8];
+    shapeFunctions(type, p, N, dN);
+    vec3 f = -x;
+    mat3 J = mat3(0.0);  // columns: d(position)/dr, /ds, /dt
+    for (uint i = 0u; i < nv; ++i) {
+      f += N[i] * P[i];
+      J[0] += dN[i].x * P[i];
+      J[1] += dN[i].y * P[i];
+      J[2] += dN[i].z * P[i];
+    }
+    float det = determinant(J);
+    if (abs(det) < 1e-30) break;
+    vec3 delta = inverse(J) * f;
+    p -= delta;
+    // Keep the iterate near the element: a point outside by rounding stays bounded.
+    p = clamp(p, vec3(-0.5), vec3(1.5));
+    if (dot(delta, delta) < 1e-12) break;
+  }
+}
+
+float interpolateIsoparametric(uint type, vec3 p, float S[8]) {
+  float N[8];
+  vec3 dN[8];
+  vec3 q = clamp(p, vec3(0.0), vec3(1.0));
+  if (type == SM_WED && q.x + q.y > 1.0) q.xy /= (q.x + q.y);
+  shapeFunctions(type, q, N, dN);
+  float s = 0.0;
+  for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) s += N[i] * S[i];
+  return s;
+}
+
+#endif

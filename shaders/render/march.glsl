@@ -1,0 +1,201 @@
+// Element marching (the paper's "Per-Segment Volume Integration"): from the element behind a
+// segment's entry, walk element to element through the connectivity, finding each exit face with
+// the exact crossing predicates (ray_frame.glsl), and integrate the samples of the global grid
+// t_k = k dt that fall inside each element. Every walk has a step bound (invariant 6).
+#ifndef SM_MARCH_GLSL
+#define SM_MARCH_GLSL
+
+#include "ray_frame.glsl"
+#include "scene_access.glsl"
+#include "interpolate.glsl"
+
+// An element entered through `entryFace` at ray distance tIn, where the scalar is sIn.
+struct Walk {
+  uint type;
+  uint index;
+  uint v[8];
+  int entryFace;
+  float tIn;
+  float sIn;
+};
+
+struct ElementGeom {
+  vec3 P[8];   // projected vertices (xy in the ray frame, z = foot distance)
+  vec3 X[8];   // positions relative to X[0]'s world position (for Newton)
+  vec3 origin; // world position of vertex 0
+  float S[8];  // vertex scalars
+};
+
+#include "transfer.glsl"
+
+ElementGeom loadGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8]) {
+  ElementGeom g;
+  uint nv = SM_NUM_VERTS[type];
+  g.origin = vertexPosition(sc, v[0]);
+  for (uint i = 0u; i < 8u; ++i) {
+    g.P[i] = vec3(0.0);
+    g.X[i] = vec3(0.0);
+    g.S[i] = 0.0;
+  }
+  for (uint i = 0u; i < nv; ++i) {
+    vec3 x = vertexPosition(sc, v[i]);
+    g.P[i] = projectVertex(fr, x);
+    g.X[i] = x - g.origin;
+    g.S[i] = vertexScalar(sc, v[i]);
+  }
+  return g;
+}
+
+// Local vertex indices of the (up to two) triangles of face f, split by the shared rule.
+uint faceTriangles(uint type, uint v[8], uint f, out uint tri[6]) {
+  uint a = smFaceVert(type, f, 0u), b = smFaceVert(type, f, 1u), c = smFaceVert(type, f, 2u);
+  if (smFaceSize(type, f) == 3u) {
+    tri[0] = a; tri[1] = b; tri[2] = c;
+    tri[3] = a; tri[4] = b; tri[5] = c;
+    return 1u;
+  }
+  uint d = smFaceVert(type, f, 3u);
+  uint m = min(min(v[a], v[b]), min(v[c], v[d]));
+  if (m == v[a] || m == v[c]) {
+    tri[0] = a; tri[1] = b; tri[2] = c; tri[3] = c; tri[4] = d; tri[5] = a;
+  } else {
+    tri[0] = b; tri[1] = c; tri[2] = d; tri[3] = d; tri[4] = a; tri[5] = b;
+  }
+  return 2u;
+}
+
+// The face through which the ray leaves the element (side = +1) or, walking backward, came in
+// (side = -1), other than `skipFace`. Forward picks the nearest crossing at or beyond tRef (a
+// warped, non-convex element may be crossed more than once); backward the nearest at or before it.
+bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, float tRef, out int face,
+                  out float t, out float s) {
+  bool found = false;
+  face = -1;
+  t = 0.0;
+  s = 0.0;
+  for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
+    if (int(f) == skipFace) continue;
+    uint tri[6];
+    uint nt = faceTriangles(type, v, f, tri);
+    for (uint k = 0u; k < nt; ++k) {
+      uint a = tri[3u * k], b = tri[3u * k + 1u], c = tri[3u * k + 2u];
+      if (crossingSide(g.P[a].xy, g.P[b].xy, g.P[c].xy) != side) continue;
+      float tc;
+      vec3 w;
+      triangleCrossing(v[a], v[b], v[c], g.P[a], g.P[b], g.P[c], tc, w);
+      bool ahead = side > 0 ? tc >= tRef : tc <= tRef;
+      bool bestAhead = side > 0 ? t >= tRef : t <= tRef;
+      bool better;
+      if (!found) better = true;
+      else if (ahead != bestAhead) better = ahead;
+      else if (ahead) better = side > 0 ? tc < t : tc > t;  // the nearest crossing ahead
+      else better = side > 0 ? tc > t : tc < t;             // else the least far behind
+      if (better) {
+        found = true;
+        face = int(f);
+        t = tc;
+        s = w.x * g.S[a] + w.y * g.S[b] + w.z * g.S[c];
+      }
+      if (type == SM_TET) return found;  // convex with planar faces: the first is the only one
+    }
+  }
+  return found;
+}
+
+// Moves the walk across face f (of the current element) into neighbour `ref`.
+bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, float s) {
+  uint n = smFaceSize(w.type, f);
+  uint k[4];
+  for (uint i = 0u; i < n; ++i) k[i] = w.v[smFaceVert(w.type, f, n - 1u - i)];  // reversed: its outward order
+  if (n == 3u) k[3] = 0u;
+  w.type = smRefType(ref);
+  w.index = smRefIndex(ref);
+  uint v[8];
+  w.entryFace = decodeElement(sc, w.type, w.index, k, n, v);
+  w.v = v;
+  w.tIn = t;
+  w.sIn = s;
+  return w.entryFace >= 0;
+}
+
+struct MarchResult {
+  vec4 color;     // premultiplied, front to back
+  float tEnd;     // where the walk left the rank's volume
+  uint status;    // 0 ok, 1 lost, 2 step limit
+  uint steps;
+  uint samples;
+};
+
+const uint MARCH_OK = 0u;
+const uint MARCH_LOST = 1u;
+const uint MARCH_STEP_LIMIT = 2u;
+
+// Integrates the segment that starts with walk `w`, taking samples from tLo on.
+MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
+  MarchResult r;
+  r.color = vec4(0.0);
+  r.tEnd = w.tIn;
+  r.status = MARCH_STEP_LIMIT;
+  r.steps = 0u;
+  r.samples = 0u;
+  SceneRefs sc = fp.scene;
+  vec3 guess = parametricCenter(w.type);
+  for (uint step = 0u; step < fp.maxElementSteps; ++step) {
+    r.steps += 1u;
+    ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
+    int f;
+    float tOut, sOut;
+    if (!findCrossing(w.type, w.v, g, w.entryFace, 1, w.tIn, f, tOut, sOut)) {
+      r.status = MARCH_LOST;
+      return r;
+    }
+    tOut = max(tOut, w.tIn);
+    float a = max(w.tIn, tLo);
+    if (tOut > a) {
+      integrateElement(fr, fp, w.type, g, w.tIn, tOut, w.sIn, sOut, a, tOut, guess, r.color, r.samples);
+    }
+    r.tEnd = tOut;
+    if (r.color.a >= fp.earlyTermination) {
+      r.status = MARCH_OK;
+      return r;
+    }
+    uint ref = neighborOf(sc, w.type, w.index, faceSlot(w.type, w.v, uint(f)));
+    if (ref == SM_NO_NEIGHBOR) {
+      r.status = MARCH_OK;
+      return r;
+    }
+    uint prevType = w.type;
+    if (!crossInto(sc, w, uint(f), ref, tOut, sOut)) {
+      r.status = MARCH_LOST;
+      return r;
+    }
+    if (w.type != prevType) guess = parametricCenter(w.type);
+  }
+  return r;
+}
+
+// Walks backward from walk `w` (an element entered backward through its face w.entryFace at w.tIn)
+// to the element that holds tStart, or to the shell face where the volume begins if that comes
+// first. Returns the walk ready for marchSegment (entry = that crossing).
+bool walkBack(RayFrame fr, FrameParams fp, inout Walk w, float tStart, inout uint steps) {
+  SceneRefs sc = fp.scene;
+  for (uint step = 0u; step < fp.maxElementSteps; ++step) {
+    steps += 1u;
+    ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
+    int f;
+    float tB, sB;
+    if (!findCrossing(w.type, w.v, g, w.entryFace, -1, w.tIn, f, tB, sB)) return false;
+    tB = min(tB, w.tIn);
+    uint ref = neighborOf(sc, w.type, w.index, faceSlot(w.type, w.v, uint(f)));
+    if (tB <= tStart || ref == SM_NO_NEIGHBOR) {
+      w.entryFace = f;
+      w.tIn = tB;
+      w.sIn = sB;
+      return true;
+    }
+    if (!crossInto(sc, w, uint(f), ref, tB, sB)) return false;
+  }
+  return false;
+}
+
+#endif

@@ -1,0 +1,60 @@
+// Reading one rank's prepared scene through buffer device addresses.
+#ifndef SM_SCENE_ACCESS_GLSL
+#define SM_SCENE_ACCESS_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "shared/render_types.h"
+#include "shared/xor_codec.h"
+
+// Scene specialisation (DESIGN.md: pay only for what the scene uses).
+layout(constant_id = 0) const bool kCompact = true;
+layout(constant_id = 1) const uint kTypesPresent = 15u;  // bit t: elements of type t exist
+
+layout(buffer_reference, scalar) readonly buffer SmFloats { float v[]; };
+layout(buffer_reference, scalar) readonly buffer SmVec3s { vec3 v[]; };
+layout(buffer_reference, scalar) readonly buffer SmVec4s { vec4 v[]; };
+layout(buffer_reference, scalar) buffer SmUints { uint v[]; };
+layout(buffer_reference, scalar) buffer SmSegments { Segment v[]; };
+layout(buffer_reference, scalar) readonly buffer SmParams { FrameParams p; };
+layout(buffer_reference, scalar) buffer SmStats { RenderStats s; };
+
+bool typePresent(uint t) { return (kTypesPresent & (1u << t)) != 0u; }
+
+vec3 vertexPosition(SceneRefs sc, uint v) { return SmVec3s(sc.positions).v[v]; }
+float vertexScalar(SceneRefs sc, uint v) { return SmFloats(sc.scalars).v[v]; }
+
+uint recordWords(uint type) { return kCompact ? SM_COMPACT_WORDS[type] : SM_PLAIN_WORDS[type]; }
+
+void loadRecord(SceneRefs sc, uint type, uint index, out uint rec[8]) {
+  for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
+  uint words = recordWords(type);
+  uint64_t base = sc.elements[type];
+  SmUints r = SmUints(base);
+  uint first = index * words;
+  for (uint i = 0u; i < words; ++i) rec[i] = r.v[first + i];
+}
+
+// Reconstructs element (type, index) entered through face k[0..n-1] (the element's own outward
+// order). Returns the entry face, or -1 if the face does not belong to the element.
+int decodeElement(SceneRefs sc, uint type, uint index, uint k[4], uint n, out uint v[8]) {
+  uint rec[8];
+  loadRecord(sc, type, index, rec);
+  if (kCompact) return smXorDecode(type, rec, k, n, v);
+  return smPlainDecode(type, rec, k, n, v);
+}
+
+// Connectivity slot of VTK face f of a decoded element (tets: by the opposite vertex's rank).
+const uint kTetOpposite[4] = uint[4](2u, 0u, 1u, 3u);
+uint faceSlot(uint type, uint v[8], uint f) {
+  if (type == SM_TET) return smTetSlot(v, v[kTetOpposite[f]]);
+  return f;
+}
+
+uint neighborOf(SceneRefs sc, uint type, uint index, uint slot) {
+  return SmUints(sc.neighbors[type]).v[index * SM_NUM_FACES[type] + slot];
+}
+
+#endif

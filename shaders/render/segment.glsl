@@ -1,0 +1,84 @@
+// One segment from traversal to fragment: confirm the entry with the exact predicates, find the
+// first element (walking back from the exit when the segment starts inside the volume), march.
+#ifndef SM_SEGMENT_GLSL
+#define SM_SEGMENT_GLSL
+
+#include "shell_entry.glsl"
+#include "fragment_list.glsl"
+
+struct SegmentStats {
+  uint lost, grazing, walks, stepLimit, steps, samples, inside;
+};
+
+SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u); }
+
+// Integrates `seg`, sampling from max(seg.tStart, prevEnd) on; returns false when the exact
+// predicates say the ray does not cross this segment (it grazes) or the walk is lost.
+bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prevEnd, out DcFragment frag,
+                      inout SegmentStats st) {
+  frag.color = vec4(0.0);
+  frag.depth = 0.0;
+  SceneRefs sc = fp.scene;
+  float tBound = max(seg.tStart, prevEnd);
+  Walk w;
+  if (seg.entryTriangle != kNoTriangle) {
+    uint t = confirmShellTriangle(fr, sc, seg.entryTriangle, -1, st.walks);
+    if (t == kNoTriangle) {
+      st.grazing += 1u;
+      return false;
+    }
+    if (!walkFromShell(fr, sc, t, w)) {
+      st.lost += 1u;
+      return false;
+    }
+  } else {
+    // No entry between tStart and the exit: the segment starts inside (camera in the volume, or
+    // shells of one rank that overlap). Walk back from the exit to the element holding tBound.
+    uint x = confirmShellTriangle(fr, sc, seg.exitTriangle, 1, st.walks);
+    if (x == kNoTriangle) {
+      st.grazing += 1u;
+      return false;
+    }
+    if (!walkFromShell(fr, sc, x, w) || !walkBack(fr, fp, w, tBound, st.steps)) {
+      st.lost += 1u;
+      return false;
+    }
+    if (tBound == 0.0) st.inside += 1u;
+  }
+  float tLo = max(w.tIn, tBound);
+  MarchResult r = marchSegment(fr, fp, w, tLo);
+  st.steps += r.steps;
+  st.samples += r.samples;
+  if (r.status == MARCH_LOST) st.lost += 1u;
+  if (r.status == MARCH_STEP_LIMIT) st.stepLimit += 1u;
+  prevEnd = max(prevEnd, r.tEnd);
+  frag.color = r.color;
+  frag.depth = tLo;
+  return r.status != MARCH_LOST || r.color.a > 0.0;
+}
+
+void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, uint overflow) {
+  SmStats s = SmStats(fp.stats);
+  if (st.lost != 0u) atomicAdd(s.s.lostRays, st.lost);
+  if (st.grazing != 0u) atomicAdd(s.s.grazingSkips, st.grazing);
+  if (st.walks != 0u) atomicAdd(s.s.entryWalks, st.walks);
+  if (st.stepLimit != 0u) atomicAdd(s.s.stepLimitHits, st.stepLimit);
+  if (st.inside != 0u) atomicAdd(s.s.cameraInside, st.inside);
+  if (overflow != 0u) atomicAdd(s.s.overflow, overflow);
+  uint steps = subgroupAdd(st.steps), samples = subgroupAdd(st.samples);
+  uint segs = subgroupAdd(segments), frags = subgroupAdd(fragments);
+  if (subgroupElect()) {
+    atomicAdd(s.s.elementSteps, steps);
+    atomicAdd(s.s.samples, samples);
+    atomicAdd(s.s.segments, segs);
+    atomicAdd(s.s.fragments, frags);
+  }
+}
+
+RayFrame pixelRay(FrameParams fp, uvec2 px) {
+  float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.tanHalfFovy * fp.aspect;
+  float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.tanHalfFovy;
+  return makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));
+}
+
+#endif

@@ -1,0 +1,32 @@
+#version 460
+// Shell traversal pass: per pixel, the segments of this rank's volume along the pixel's ray.
+// Count mode writes how many (two-pass lists, first pass); store mode writes them at the offsets
+// the prefix sum of the counts gave.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
+#include "shell_query.glsl"
+#include "segment.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 20) const bool kStore = false;
+layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
+
+void main() {
+  FrameParams fp = SmParams(pc.params).p;
+  uvec2 px = gl_GlobalInvocationID.xy;
+  if (px.x >= fp.width || px.y >= fp.height) return;
+  uint pixel = px.y * fp.width + px.x;
+  RayFrame fr = pixelRay(fp, px);
+  uint base = kStore ? SmUints(fp.segOffsets).v[pixel] : 0u;
+  uint cap = kStore ? SmUints(fp.segCounts).v[pixel] : fp.maxSegments;
+  uint n = 0u;
+  float tMin = 0.0;
+  Segment seg;
+  while (n < cap && nextSegment(fr, tMin, 3.0e38, seg)) {
+    if (kStore) SmSegments(fp.segments).v[base + n] = seg;
+    n += 1u;
+    tMin = resumeAfter(seg.tExit);
+  }
+  if (!kStore) SmUints(fp.segCounts).v[pixel] = n;
+}

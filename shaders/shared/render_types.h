@@ -1,0 +1,96 @@
+// Structs the renderer's shaders and C++ share (scalar block layout). In C++ they live in
+// sm::gpu, with static_asserts on sizes; every 64-bit member comes first so that C++'s natural
+// layout equals GLSL's scalar layout.
+#ifndef SM_RENDER_TYPES_H
+#define SM_RENDER_TYPES_H
+
+#include "glsl_cpp.h"
+
+#ifdef __cplusplus
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+namespace sm::gpu {
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+#endif
+
+// Where one rank's prepared data lives on the device (buffer device addresses).
+struct SceneRefs {
+  uint64_t positions;       // float xyz per vertex, rebased
+  uint64_t scalars;         // float per vertex: the current field and step
+  uint64_t elements[4];     // per type: XOR-compacted or plain records
+  uint64_t neighbors[4];    // per type: one element reference per face slot
+  uint64_t shellIndices;    // 3 vertex ids per shell triangle
+  uint64_t shellRefs;       // element behind each shell triangle
+  uint64_t shellOther;      // compact mode: 4th vertex of the quad a triangle came from, or ~0u
+  uint64_t shellAdjacency;  // 3 per triangle: the shell triangle across each edge, or ~0u
+};
+
+// Per-frame parameters of one rank.
+struct FrameParams {
+  SceneRefs scene;
+  uint64_t transferFunction;  // vec4 (rgb, opacity) entries
+  uint64_t segCounts;         // uint per pixel: segments found by traversal (two-pass count)
+  uint64_t segOffsets;        // uint per pixel: exclusive prefix sum of segCounts
+  uint64_t segments;          // Segment per segment
+  uint64_t fragCounts;        // uint per pixel: fragments written
+  uint64_t fragments;         // fragment storage (encoding per the compositor)
+  uint64_t stats;             // RenderStats
+  // Camera, rebased to the scene origin.
+  vec3 eye;
+  float tanHalfFovy;
+  vec3 forward;
+  float aspect;
+  vec3 right;
+  uint width;
+  vec3 upOrtho;
+  uint height;
+  // Sampling and transfer function.
+  float dt;
+  float tfLo;
+  float tfScale;  // 1 / (hi - lo)
+  uint tfEntries;
+  float sigmaScale;        // opacityScale / unitDistance
+  float earlyTermination;  // stop once accumulated opacity reaches this
+  uint maxElementSteps;    // per segment: the march's step bound
+  uint maxSegments;        // per ray: the traversal's bound
+  uint fragK;              // fixed-length lists: slots per pixel
+  uint pixelBegin;         // first pixel this dispatch handles (tiling)
+  uint pad0;
+  uint pad1;
+};
+
+// One segment of a ray inside this rank's volume, from shell traversal.
+struct Segment {
+  float tStart;         // where sampling may begin (the previous segment's end, or the camera)
+  float tExit;          // the exit triangle's hardware hit
+  uint entryTriangle;   // shell triangle the hardware found behind the exit, or ~0u: the segment
+                        // starts inside the volume at tStart (camera inside, or overlapping shells)
+  uint exitTriangle;
+};
+
+// Global counters (atomics) for --stats.
+struct RenderStats {
+  uint lostRays;        // marches that lost their element (must be zero on hard cases)
+  uint grazingSkips;    // hardware entries the exact predicate says the ray only grazes
+  uint entryWalks;      // entries corrected by walking the shell adjacency
+  uint stepLimitHits;   // marches stopped by maxElementSteps
+  uint segments;
+  uint fragments;
+  uint overflow;        // fragments dropped or merged by fixed-length lists
+  uint elementSteps;    // elements visited (wraps on huge frames; for rates only)
+  uint samples;         // samples taken (wraps on huge frames; for rates only)
+  uint cameraInside;    // rays whose first segment starts at the camera
+  uint pad0;
+  uint pad1;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
+static_assert(sizeof(FrameParams) == 14 * 8 + 7 * 8 + 4 * 16 + 12 * 4, "FrameParams layout");
+static_assert(sizeof(Segment) == 16, "Segment layout");
+static_assert(sizeof(RenderStats) == 48, "RenderStats layout");
+}  // namespace sm::gpu
+#endif
+
+#endif

@@ -1,0 +1,49 @@
+// One rank's prepared data on the device: buffers reached by address and the shell's acceleration
+// structures. Changing the field or time step uploads scalars only (no rebuild).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "prep/memory_report.h"
+#include "prep/prepared_rank.h"
+#include "shared/render_types.h"
+#include "vk/accel.h"
+#include "vk/buffer.h"
+
+namespace sm::render {
+
+class GpuScene {
+ public:
+  GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank);
+
+  // Scalars in this rank's vertex order (prep::gatherScalars); size must equal the vertex count.
+  void setScalars(const std::vector<float>& values);
+  // How many times geometry/acceleration structures were built (1 for the scene's life).
+  uint64_t geometryBuilds() const { return geometryBuilds_; }
+  uint64_t scalarUploads() const { return scalarUploads_; }
+
+  gpu::SceneRefs refs() const;
+  bool empty() const { return shellTriangles_ == 0; }
+  bool compact() const { return compact_; }
+  uint32_t typesPresent() const { return typesPresent_; }
+  uint64_t numVertices() const { return numVertices_; }
+  uint64_t shellTriangles() const { return shellTriangles_; }
+  VkAccelerationStructureKHR tlas() const { return tlas_.handle(); }
+  uint64_t accelerationStructureBytes() const { return blas_.bytes() + tlas_.bytes(); }
+  uint64_t deviceBytes() const;  // every buffer this scene holds
+  glm::dvec3 origin() const { return origin_; }
+
+ private:
+  const vk::Context& ctx_;
+  bool compact_;
+  uint32_t typesPresent_;
+  uint64_t numVertices_, shellTriangles_;
+  glm::dvec3 origin_;
+  vk::Buffer positions_, scalars_, shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
+  vk::Buffer elements_[4], neighbors_[4];
+  vk::AccelerationStructure blas_, tlas_;
+  uint64_t geometryBuilds_ = 0, scalarUploads_ = 0;
+};
+
+}  // namespace sm::render

@@ -1,0 +1,71 @@
+#include "render/render_passes.h"
+
+#include "render_shaders.h"
+
+namespace sm::render {
+namespace {
+
+struct Push {
+  uint64_t params;
+};
+
+void dispatchPixels(const vk::ComputePipeline& p, VkCommandBuffer cmd, VkDeviceAddress params,
+                    int w, int h) {
+  p.dispatch(cmd, vk::groupsFor(uint64_t(w), 8), vk::groupsFor(uint64_t(h), 8), 1, Push{params});
+}
+
+vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
+                                 std::span<const uint32_t> spirv,
+                                 std::vector<vk::SpecConstant> spec, bool tlas,
+                                 const GpuScene& scene) {
+  vk::ComputePipeline p(ctx, {name, spirv, std::move(spec), sizeof(Push), tlas});
+  if (tlas) p.setAccelerationStructure(scene.tlas());
+  return p;
+}
+
+}  // namespace
+
+std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
+                                                  const comp::DeepCompositor& compositor) {
+  return {{0, scene.compact() ? 1u : 0u},
+          {1, scene.typesPresent()},
+          {10, ctx.hasFloat64() ? 1u : 0u},
+          {100, compositor.modeConstant()},
+          {101, compositor.encodingConstant()}};
+}
+
+TraversalPass::TraversalPass(const vk::Context& ctx, const GpuScene& scene,
+                             const comp::DeepCompositor& c) {
+  auto spec = sceneSpecialization(ctx, scene, c);
+  auto countSpec = spec, storeSpec = spec;
+  countSpec.push_back({20, 0u});
+  storeSpec.push_back({20, 1u});
+  count_ = makePipeline(ctx, "traverse (count)", spv::traverse(), countSpec, true, scene);
+  store_ = makePipeline(ctx, "traverse (store)", spv::traverse(), storeSpec, true, scene);
+}
+
+void TraversalPass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(count_, cmd, params, w, h);
+}
+
+void TraversalPass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(store_, cmd, params, w, h);
+}
+
+MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c)
+    : pipeline_(makePipeline(ctx, "march", spv::march(), sceneSpecialization(ctx, scene, c), false,
+                             scene)) {}
+
+void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(pipeline_, cmd, params, w, h);
+}
+
+FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c)
+    : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),
+                             sceneSpecialization(ctx, scene, c), true, scene)) {}
+
+void FusedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(pipeline_, cmd, params, w, h);
+}
+
+}  // namespace sm::render

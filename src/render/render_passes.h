@@ -1,0 +1,46 @@
+// The renderer's stages as pass objects (stage-split tracer): shell traversal (count / store
+// segments), marching (segments -> fragments), and the fused single pass used with fixed-length
+// fragment lists. Each owns its pipeline, specialised to the scene and the compositor's lists.
+#pragma once
+
+#include "compositor/deep_compositor.h"
+#include "render/gpu_scene.h"
+#include "vk/pipeline.h"
+
+namespace sm::render {
+
+// Specialization shared by every pass: scene (compaction, element types present), device
+// (float64 available) and the compositor's list mode and encoding.
+std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
+                                                  const comp::DeepCompositor& compositor);
+
+class TraversalPass {
+ public:
+  TraversalPass(const vk::Context& ctx, const GpuScene& scene,
+                const comp::DeepCompositor& compositor);
+  void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+  void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+
+ private:
+  vk::ComputePipeline count_, store_;
+};
+
+class MarchPass {
+ public:
+  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+
+ private:
+  vk::ComputePipeline pipeline_;
+};
+
+class FusedPass {
+ public:
+  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+
+ private:
+  vk::ComputePipeline pipeline_;
+};
+
+}  // namespace sm::render

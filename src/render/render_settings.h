@@ -1,0 +1,21 @@
+// What a frame needs besides the scene: image size, camera, transfer function and sampling.
+#pragma once
+
+#include <cstdint>
+
+#include "scene/camera.h"
+#include "scene/transfer_function.h"
+
+namespace sm::render {
+
+struct RenderSettings {
+  int width = 512, height = 512;
+  scene::Camera camera;
+  scene::TransferFunction transferFunction;
+  double dt = 0.01;                     // sample spacing along rays, world units
+  double earlyTermination = 0.99;       // stop a ray once this opaque
+  uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
+  uint32_t maxElementSteps = 1u << 22;  // per segment: march bound
+};
+
+}  // namespace sm::render

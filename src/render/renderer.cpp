@@ -1,0 +1,184 @@
+#include "render/renderer.h"
+
+#include <chrono>
+
+#include <glm/common.hpp>
+
+#include "common/check.h"
+#include "common/error.h"
+
+namespace sm::render {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+glm::vec3 toFloat(const glm::dvec3& v) {
+  return glm::vec3(v);
+}
+
+}  // namespace
+
+Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor)
+    : ctx_(ctx), scene_(scene), compositor_(compositor), timestamps_(ctx, 8) {
+  if (compositor.options().mode == comp::ListMode::TwoPass) {
+    traversal_ = std::make_unique<TraversalPass>(ctx, scene, compositor);
+    march_ = std::make_unique<MarchPass>(ctx, scene, compositor);
+  } else {
+    fused_ = std::make_unique<FusedPass>(ctx, scene, compositor);
+  }
+  params_ = vk::Buffer(ctx, sizeof(gpu::FrameParams), vk::kStorageUsage, vk::MemoryUse::Upload,
+                       "frame params");
+  stats_ = vk::Buffer(ctx, sizeof(gpu::RenderStats), vk::kStorageUsage, vk::MemoryUse::Readback,
+                      "render stats");
+}
+
+gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
+  if (s.width != compositor_.width() || s.height != compositor_.height())
+    throw Error("image size ", s.width, "x", s.height, " differs from the compositor's ",
+                compositor_.width(), "x", compositor_.height());
+  if (!(s.dt > 0.0)) throw Error("--step: the sample distance must be positive, not ", s.dt);
+  const scene::TransferFunction& tf = s.transferFunction;
+  if (tf.table.size() < 2) throw Error("transfer function has no table");
+  scene::CameraFrame cam = scene::cameraFrame(s.camera, s.width, s.height);
+  gpu::FrameParams p{};
+  p.scene = scene_.refs();
+  p.transferFunction = transferFunction_.valid() ? transferFunction_.address() : 0;
+  p.stats = stats_.address();
+  p.eye = toFloat(cam.eye - scene_.origin());
+  p.forward = toFloat(cam.forward);
+  p.right = toFloat(cam.right);
+  p.upOrtho = toFloat(cam.upOrtho);
+  p.tanHalfFovy = float(cam.tanHalfFovy);
+  p.aspect = float(cam.aspect);
+  p.width = uint32_t(s.width);
+  p.height = uint32_t(s.height);
+  p.dt = float(s.dt);
+  if (tf.hi > tf.lo) {
+    p.tfLo = float(tf.lo);
+    p.tfScale = float(1.0 / (tf.hi - tf.lo));
+  } else {  // constant range: every value maps to the middle of the table, as scene::lookup does
+    p.tfLo = float(tf.lo - 0.5);
+    p.tfScale = 1.0f;
+  }
+  p.tfEntries = uint32_t(tf.table.size());
+  p.sigmaScale = float(tf.opacityScale / tf.unitDistance);
+  p.earlyTermination = float(s.earlyTermination);
+  p.maxElementSteps = s.maxElementSteps;
+  p.maxSegments = s.maxSegments;
+  comp::DeviceLists lists = compositor_.lists();
+  p.segCounts = lists.capacities;
+  p.segOffsets = lists.offsets;
+  p.fragCounts = lists.counts;
+  p.fragments = lists.fragments;
+  p.fragK = lists.fixedK;
+  return p;
+}
+
+void Renderer::writeParams(const gpu::FrameParams& p) {
+  params_.upload(&p, sizeof p);
+}
+
+FrameResult Renderer::render(const RenderSettings& s) {
+  auto t0 = std::chrono::steady_clock::now();
+  const auto& table = s.transferFunction.table;
+  if (!transferFunction_.valid() || transferFunction_.size() < table.size() * sizeof(glm::vec4))
+    transferFunction_ = vk::Buffer(ctx_, table.size() * sizeof(glm::vec4), vk::kStorageUsage,
+                                   vk::MemoryUse::Device, "transfer function");
+  transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
+  gpu::FrameParams p = frameParams(s);
+  FrameResult out;
+  const gpu::RenderStats zero{};
+  stats_.upload(&zero, sizeof zero);
+  if (traversal_)
+    renderTwoPass(s, p, out);
+  else
+    renderFixed(s, p, out);
+  auto tc = std::chrono::steady_clock::now();
+  out.pixels = compositor_.composite();
+  out.timings.compositeMs = msSince(tc);
+  stats_.download(&out.counters, sizeof out.counters);
+  out.fragments = out.counters.fragments;
+  out.timings.totalMs = msSince(t0);
+  return out;
+}
+
+void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
+  // Pass 1: count each pixel's segments (the compositor's list capacities).
+  writeParams(p);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    traversal_->recordCount(cmd, params_.address(), s.width, s.height);
+    timestamps_.write(cmd, 1);
+  });
+  auto ts = timestamps_.results(2);
+  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
+  auto t0 = std::chrono::steady_clock::now();
+  out.segments = compositor_.prepareLists();
+  lastSegmentTotal_ = out.segments;
+  out.timings.scanMs = msSince(t0);
+  // Pass 2: store the segments at the scanned offsets, then march them into fragments.
+  const uint64_t segBytes = std::max<uint64_t>(out.segments, 1) * sizeof(gpu::Segment);
+  if (!segments_.valid() || segments_.size() < segBytes)
+    segments_ = vk::Buffer(ctx_, segBytes + segBytes / 4, vk::kStorageUsage, vk::MemoryUse::Device,
+                           "segments");
+  p.segments = segments_.address();
+  p.fragments = compositor_.lists().fragments;
+  writeParams(p);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    traversal_->recordStore(cmd, params_.address(), s.width, s.height);
+    vk::computeBarrier(cmd);
+    timestamps_.write(cmd, 1);
+    march_->record(cmd, params_.address(), s.width, s.height);
+    timestamps_.write(cmd, 2);
+  });
+  ts = timestamps_.results(3);
+  out.timings.traversalMs += timestamps_.ms(ts, 0, 1);
+  out.timings.marchMs = timestamps_.ms(ts, 1, 2);
+}
+
+void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
+  writeParams(p);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    fused_->record(cmd, params_.address(), s.width, s.height);
+    timestamps_.write(cmd, 1);
+  });
+  auto ts = timestamps_.results(2);
+  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
+}
+
+std::vector<uint32_t> Renderer::lastSegmentCounts() const {
+  if (!traversal_) return {};
+  std::vector<uint32_t> v(uint64_t(compositor_.width()) * compositor_.height());
+  compositor_.downloadCapacities(v);
+  return v;
+}
+
+std::vector<std::vector<gpu::Segment>> Renderer::lastSegments() const {
+  std::vector<std::vector<gpu::Segment>> out;
+  if (!traversal_ || !segments_.valid()) return out;
+  std::vector<uint32_t> counts = lastSegmentCounts();
+  std::vector<gpu::Segment> all(lastSegmentTotal_);
+  segments_.download(all.data(), all.size() * sizeof(gpu::Segment));
+  out.resize(counts.size());
+  uint64_t at = 0;
+  for (size_t p = 0; p < counts.size(); ++p) {
+    out[p].assign(all.begin() + at, all.begin() + at + counts[p]);
+    at += counts[p];
+  }
+  return out;
+}
+
+std::vector<uint32_t> Renderer::lastFragmentCounts() const {
+  std::vector<uint32_t> v(uint64_t(compositor_.width()) * compositor_.height());
+  compositor_.downloadCounts(v);
+  return v;
+}
+
+}  // namespace sm::render

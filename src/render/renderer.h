@@ -1,0 +1,60 @@
+// The renderer: a thin facade over the pass objects. One frame = traversal, marching, compositing.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "compositor/deep_compositor.h"
+#include "render/gpu_scene.h"
+#include "render/render_passes.h"
+#include "render/render_settings.h"
+
+namespace sm::render {
+
+struct FrameTimings {
+  double traversalMs = 0;  // both traversal passes (two-pass) or the fused pass (fixed lists)
+  double scanMs = 0;       // prefix sum over the counts, and the host round trip for the total
+  double marchMs = 0;      // marching (0 for fixed lists: fused into traversalMs)
+  double compositeMs = 0;
+  double totalMs = 0;  // wall clock of render()
+};
+
+struct FrameResult {
+  std::vector<glm::vec4> pixels;  // premultiplied RGBA, row 0 at the top; rank 0 only
+  gpu::RenderStats counters{};
+  FrameTimings timings;
+  uint64_t segments = 0;   // segments found this frame on this rank
+  uint64_t fragments = 0;  // fragments written this frame on this rank
+};
+
+class Renderer {
+ public:
+  Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor);
+  FrameResult render(const RenderSettings& settings);
+  // Per-pixel counts of the last frame on this rank (statistics and heatmaps).
+  std::vector<uint32_t> lastSegmentCounts() const;
+  std::vector<uint32_t> lastFragmentCounts() const;
+  // The segments traversal found in the last two-pass frame, per pixel (for tests that compare
+  // segment lists with the CPU reference).
+  std::vector<std::vector<gpu::Segment>> lastSegments() const;
+
+ private:
+  gpu::FrameParams frameParams(const RenderSettings& s) const;
+  void renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
+  void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
+  void writeParams(const gpu::FrameParams& p);
+
+  const vk::Context& ctx_;
+  const GpuScene& scene_;
+  comp::DeepCompositor& compositor_;
+  std::unique_ptr<TraversalPass> traversal_;
+  std::unique_ptr<MarchPass> march_;
+  std::unique_ptr<FusedPass> fused_;
+  vk::Buffer params_, stats_, transferFunction_, segments_;
+  uint64_t lastSegmentTotal_ = 0;
+  vk::TimestampQueries timestamps_;
+};
+
+}  // namespace sm::render

@@ -1,0 +1,38 @@
+// Renders a mesh on the GPU in one call (prepare, upload, render, composite) for image tests.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compositor/deep_compositor.h"
+#include "mesh/unstructured_mesh.h"
+#include "render/renderer.h"
+#include "scene/image.h"
+
+namespace sm::test {
+
+struct GpuRender {
+  scene::Image image;
+  render::FrameResult frame;
+  uint64_t validationErrors = 0, validationWarnings = 0;
+  std::vector<std::vector<gpu::Segment>> segments;  // per pixel (two-pass lists)
+};
+
+struct GpuRenderOptions {
+  bool compact = true;
+  comp::CompositorOptions lists;
+};
+
+// Renders `mesh` (one rank) with the scalars of field `field`, step 0 (or `values` if non-empty).
+GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::string& field,
+                      const render::RenderSettings& settings, const GpuRenderOptions& options = {});
+
+// A transfer function with constant colour and opacity (for analytic tests).
+scene::TransferFunction constantTransferFunction(glm::vec3 rgb, float opacity, double unitDistance);
+
+// Writes reference, result and difference PNGs for a failed comparison; returns the folder.
+std::string writeComparison(const std::string& name, const scene::Image& reference,
+                            const scene::Image& result);
+
+}  // namespace sm::test
