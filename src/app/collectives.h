@@ -1,0 +1,40 @@
+// The few collective operations the application needs (global bounds, ranges, sums), behind an
+// interface so that the one-process run needs no MPI. The MPI implementation wraps the
+// compositor's MPI communicator.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sm::comp {
+class Communicator;
+}
+
+namespace sm::app {
+
+class Collectives {
+ public:
+  virtual ~Collectives() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  virtual double min(double v) = 0;
+  virtual double max(double v) = 0;
+  virtual double sum(double v) = 0;
+  virtual uint64_t sum(uint64_t v) = 0;
+  // The compositor's communicator (nullptr on one rank: no exchange).
+  virtual comp::Communicator* communicator() = 0;
+};
+
+class SingleProcess final : public Collectives {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  double min(double v) override { return v; }
+  double max(double v) override { return v; }
+  double sum(double v) override { return v; }
+  uint64_t sum(uint64_t v) override { return v; }
+  comp::Communicator* communicator() override { return nullptr; }
+};
+
+}  // namespace sm::app
