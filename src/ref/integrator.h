@@ -1,6 +1,6 @@
 // Integration along one ray through a run of crossings, front to back into an accumulator: the
 // Grid samples or the converged integral described in reference_renderer.h. Internal to the
-// reference renderer; exposed for its tests.
+// reference renderer.
 #pragma once
 
 #include <span>

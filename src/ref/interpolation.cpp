@@ -89,13 +89,9 @@ Inversion invertTet(std::span<const glm::dvec3> c, const glm::dvec3& p) {
   double det = 0.0;
   inv.rst = solve3(c[1] - c[0], c[2] - c[0], c[3] - c[0], p - c[0], det);
   inv.iterations = 1;
-  if (!(std::abs(det) > 0.0) || !std::isfinite(maxAbs(inv.rst))) {
-    inv.rst = parametricCenter(CellType::Tet);  // degenerate: any point is as good as another
-    inv.residual = glm::length(parametricToWorld(CellType::Tet, c, inv.rst) - p);
-    return inv;
-  }
+  inv.converged = std::abs(det) > 0.0 && std::isfinite(maxAbs(inv.rst));
+  if (!inv.converged) inv.rst = parametricCenter(CellType::Tet);  // flat: no better answer
   inv.residual = glm::length(parametricToWorld(CellType::Tet, c, inv.rst) - p);
-  inv.converged = true;
   return inv;
 }
 
@@ -244,16 +240,22 @@ glm::dvec3 clampToDomain(CellType type, const glm::dvec3& rst) {
 
 Inversion worldToParametric(CellType type, std::span<const glm::dvec3> corners,
                             const glm::dvec3& p) {
-  SM_DCHECK(corners.size() >= mesh::numVerts(type));
-  if (type == CellType::Tet) return invertTet(corners, p);
-  const double scale = elementSize(corners);
+  const uint32_t nv = mesh::numVerts(type);
+  SM_DCHECK(corners.size() >= nv);
+  // Relative to a corner, so that residuals keep their precision far from the origin.
+  glm::dvec3 local[kMaxElementVerts];
+  for (uint32_t i = 0; i < nv; ++i) local[i] = corners[i] - corners[0];
+  const std::span<const glm::dvec3> c(local, nv);
+  const glm::dvec3 q = p - corners[0];
+  if (type == CellType::Tet) return invertTet(c, q);
+  const double scale = elementSize(c);
   Inversion best;
   best.residual = INFINITY;
-  newtonFrom(type, corners, p, parametricCenter(type), scale, best);
+  newtonFrom(type, c, q, parametricCenter(type), scale, best);
   // Fallback for strongly distorted elements: start near each vertex in turn.
-  for (uint32_t v = 0; v < mesh::numVerts(type) && !best.converged; ++v) {
+  for (uint32_t v = 0; v < nv && !best.converged; ++v) {
     glm::dvec3 center = parametricCenter(type);
-    newtonFrom(type, corners, p, center + 0.75 * (parametricVertex(type, v) - center), scale, best);
+    newtonFrom(type, c, q, center + 0.75 * (parametricVertex(type, v) - center), scale, best);
   }
   if (!std::isfinite(best.residual)) best.rst = parametricCenter(type);
   return best;

@@ -60,6 +60,11 @@ bool hitTriangle(Vertex a, Vertex b, Vertex c, Hit& hit) {
   return true;
 }
 
+// Entries before exits at equal distance: touching pieces merge, grazes become empty.
+bool before(const Hit& x, const Hit& y) {
+  return x.t < y.t || (x.t == y.t && x.side > y.side);
+}
+
 int localIndex(std::span<const uint32_t> ids, uint32_t nv, uint32_t globalId) {
   for (uint32_t i = 0; i < nv; ++i)
     if (ids[i] == globalId) return int(i);
@@ -112,13 +117,10 @@ int elementIntervals(const RayFrame& ray, CellType type, std::span<const uint32_
     test(l[0], l[1], l[2]);
     test(l[3], l[4], l[5]);
   }
-  // Entries before exits at equal distance: touching pieces merge, grazes become empty.
   for (int i = 1; i < numHits; ++i) {  // insertion sort: at most 12 hits
     Hit h = hits[i];
     int j = i;
-    for (; j > 0 && (h.t < hits[j - 1].t || (h.t == hits[j - 1].t && h.side > hits[j - 1].side));
-         --j)
-      hits[j] = hits[j - 1];
+    for (; j > 0 && before(h, hits[j - 1]); --j) hits[j] = hits[j - 1];
     hits[j] = h;
   }
   int count = 0, winding = 0;

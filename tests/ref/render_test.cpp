@@ -107,6 +107,65 @@ TEST(Render, LinearOpacityRampKnownAnswers) {
   }
 }
 
+// A vertical ray through each reference element with a linear field (dyadic, so exact in float):
+// known entry and exit, exact scalars along the ray, and the model's Grid fragment.
+TEST(Render, SingleElementsWithALinearField) {
+  const std::pair<mesh::CellType, double> exits[] = {{mesh::CellType::Tet, 1.65},
+                                                     {mesh::CellType::Pyramid, 1.3},
+                                                     {mesh::CellType::Wedge, 2.0},
+                                                     {mesh::CellType::Hex, 2.0}};
+  auto f = [](const glm::dvec3& p) { return 0.25 + 0.125 * p.x + 0.25 * p.y + 0.375 * p.z; };
+  const auto tf = uniformTf({0.5f, 0.25f, 1.0f}, 5.0, true);
+  const glm::dvec3 origin(0.2, 0.15, -1.0), dir(0, 0, 1);
+  const double dt = 0.01;
+  for (auto [type, tOut] : exits) {
+    auto m = test::singleElement(type, test::referenceCorners(type));
+    ReferenceRenderer r(m);
+    auto values = test::pointField(m, f);
+    auto cs = r.traceRay(origin, dir);
+    ASSERT_EQ(cs.size(), 1u) << mesh::cellTypeName(type);
+    EXPECT_NEAR(cs[0].tIn, 1.0, 1e-15) << mesh::cellTypeName(type);
+    EXPECT_NEAR(cs[0].tOut, tOut, 1e-15) << mesh::cellTypeName(type);
+    double transmittance = 1.0;
+    for (int k = 100; k * dt < tOut; ++k) {
+      glm::dvec3 p = origin + k * dt * dir;
+      double s = r.scalar(type, 0, values, p);
+      EXPECT_NEAR(s, f(p), 1e-14) << mesh::cellTypeName(type) << " at t = " << k * dt;
+      transmittance *= std::exp(-tf.extinction(f(p)) * dt);
+    }
+    auto grid = r.fragments(origin, dir, values, tf, {.dt = dt});
+    ASSERT_EQ(grid.size(), 1u);
+    EXPECT_NEAR(grid[0].alpha, 1.0 - transmittance, 1e-12) << mesh::cellTypeName(type);
+  }
+}
+
+// Two hexahedra overlapping over half their length (a non-conforming input): every point and
+// every grid sample of the overlap counts once, in the element entered first.
+TEST(Render, OverlappingElementsCountOnce) {
+  mesh::UnstructuredMesh m;
+  for (double x0 : {0.0, 0.5})
+    for (const auto& c : test::referenceCorners(mesh::CellType::Hex))
+      m.points.push_back(c + glm::dvec3(x0, 0, 0));
+  auto& hex = m.cells[mesh::typeIndex(mesh::CellType::Hex)];
+  for (uint32_t i = 0; i < 16; ++i) hex.push_back(i);
+  m.clusters[mesh::typeIndex(mesh::CellType::Hex)] = {0, 1};
+  ReferenceRenderer r(m);
+  const auto tf = uniformTf({1, 1, 1}, 2.0, false);
+  std::vector<float> values(16, 0.5f);
+  const glm::dvec3 origin(-1.0, 0.4, 0.7), dir(1, 0, 0);
+  auto cs = r.traceRay(origin, dir);
+  ASSERT_EQ(cs.size(), 2u);
+  auto segs = segments(cs, {});
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].tOut, 2.5);
+  const double dt = 0.1, sigma = 1.0;
+  auto grid = r.fragments(origin, dir, values, tf, {.dt = dt});
+  ASSERT_EQ(grid.size(), 1u);
+  EXPECT_NEAR(grid[0].alpha, 1.0 - std::exp(-sigma * dt * 15), 1e-12);  // k = 10 .. 24
+  auto converged = r.fragments(origin, dir, values, tf, {.mode = RenderMode::Converged});
+  EXPECT_NEAR(converged[0].alpha, -std::expm1(-sigma * 1.5), 1e-9);
+}
+
 scene::TransferFunction viridis() {
   auto tf = scene::makeTransferFunction("viridis");
   tf.lo = 0.0;

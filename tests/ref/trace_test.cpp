@@ -69,7 +69,7 @@ TEST(TraceRay, GrazingInvertedAndFlatElementsGiveNothing) {
 // Checks that the crossings chain from the box entry to the box exit without gaps or overlaps
 // (each within `gap`), or are empty when the ray misses; returns whether any crossing was found.
 bool expectChain(const std::vector<Crossing>& cs, const Interval& box, double gap,
-                 const std::string& what) {
+                 const std::string& what, double ends = 1e-12) {
   if (box.tIn >= box.tOut) {
     EXPECT_TRUE(cs.empty()) << what;
     return false;
@@ -78,8 +78,8 @@ bool expectChain(const std::vector<Crossing>& cs, const Interval& box, double ga
     ADD_FAILURE() << what << ": no crossing for a box interval of length " << box.tOut - box.tIn;
     return false;
   }
-  EXPECT_NEAR(cs.front().tIn, box.tIn, 1e-12) << what;
-  EXPECT_NEAR(cs.back().tOut, box.tOut, 1e-12) << what;
+  EXPECT_NEAR(cs.front().tIn, box.tIn, ends) << what;
+  EXPECT_NEAR(cs.back().tOut, box.tOut, ends) << what;
   double length = 0.0;
   for (size_t i = 0; i < cs.size(); ++i) {
     EXPECT_TRUE(std::isfinite(cs[i].tIn) && std::isfinite(cs[i].tOut)) << what;
@@ -89,7 +89,7 @@ bool expectChain(const std::vector<Crossing>& cs, const Interval& box, double ga
       EXPECT_NEAR(cs[i].tIn, cs[i - 1].tOut, gap) << what << " crossing " << i;
     }
   }
-  EXPECT_NEAR(length, box.tOut - box.tIn, 1e-12) << what;
+  EXPECT_NEAR(length, box.tOut - box.tIn, ends) << what;
   return true;
 }
 
@@ -113,6 +113,31 @@ TEST(TraceRay, RandomRaysThroughCubeSplitsChainExactly) {
       }
       EXPECT_GT(hits, 100);
     }
+  }
+}
+
+// Small elements far from the origin: the chain stays exact; the ends agree with the slab test
+// to the rounding of coordinates near 1e6 (ulp 1.2e-10).
+TEST(TraceRay, SmallElementsFarFromTheOrigin) {
+  const glm::dvec3 lo(1e6, -1e6, 5e5);
+  const double size = 0.01;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-0.2, 1.2), dir(-1.0, 1.0);
+  for (Split split : test::kAllSplits) {
+    auto m = test::cubeMesh(split, 2, size, lo);
+    ReferenceRenderer r(m);
+    const glm::dvec3 boxLo = m.points.front(), boxHi = m.points[(3 * 3 * 3) - 1];
+    int hits = 0;
+    for (int i = 0; i < 200; ++i) {
+      glm::dvec3 target = lo + size * glm::dvec3(u(rng), u(rng), u(rng));
+      glm::dvec3 origin =
+          lo +
+          size * (glm::dvec3(0.5) + 3.0 * glm::normalize(glm::dvec3(dir(rng), dir(rng), dir(rng))));
+      glm::dvec3 d = glm::normalize(target - origin);
+      hits += expectChain(r.traceRay(origin, d), test::slab(boxLo, boxHi, origin, d), 0.0,
+                          test::splitName(split), 1e-9);
+    }
+    EXPECT_GT(hits, 50);
   }
 }
 
