@@ -8,7 +8,8 @@
 #include "common/log.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"shellmarch: direct volume rendering of unstructured meshes, data-parallel over MPI"};
+  CLI::App app{
+      "shellmarch: direct volume rendering of unstructured meshes, data-parallel over MPI"};
   app.require_subcommand(1);
   bool verbose = false, quiet = false;
   app.add_flag("-v,--verbose", verbose, "More messages");

@@ -73,7 +73,8 @@ RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collecti
   s.elementSize.sum = coll.sum(local.sum);
   s.elementSize.count = coll.sum(local.count);
   s.wholeElements = s.elementSize.count;
-  if (s.wholeElements == 0) throw Error(path, ": no tetrahedra, pyramids, wedges or hexahedra to render");
+  if (s.wholeElements == 0)
+    throw Error(path, ": no tetrahedra, pyramids, wedges or hexahedra to render");
   return s;
 }
 

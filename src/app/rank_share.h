@@ -18,10 +18,10 @@ struct ShareOptions {
 };
 
 struct RankShare {
-  mesh::UnstructuredMesh mesh;       // this rank's clusters, merged
-  std::vector<int> clusters;         // cluster ids this rank renders
+  mesh::UnstructuredMesh mesh;  // this rank's clusters, merged
+  std::vector<int> clusters;    // cluster ids this rank renders
   int totalClusters = 0;
-  mesh::Bounds wholeBounds;          // of the whole data set (all ranks)
+  mesh::Bounds wholeBounds;            // of the whole data set (all ranks)
   render::ElementSizeSum elementSize;  // whole data set
   uint64_t wholeElements = 0;
 };

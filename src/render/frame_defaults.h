@@ -17,7 +17,11 @@ struct ElementSizeSum {
 };
 ElementSizeSum elementSizeSum(const mesh::UnstructuredMesh& mesh);
 
-inline double defaultStep(double meanElementSize) { return 0.5 * meanElementSize; }
-inline double defaultUnitDistance(const mesh::Bounds& whole) { return whole.diagonal() / 8.0; }
+inline double defaultStep(double meanElementSize) {
+  return 0.5 * meanElementSize;
+}
+inline double defaultUnitDistance(const mesh::Bounds& whole) {
+  return whole.diagonal() / 8.0;
+}
 
 }  // namespace sm::render

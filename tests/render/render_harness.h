@@ -24,9 +24,25 @@ struct GpuRenderOptions {
   comp::CompositorOptions lists;
 };
 
-// Renders `mesh` (one rank) with the scalars of field `field`, step 0 (or `values` if non-empty).
+// Renders `mesh` (one rank) with the scalars of field `field`, step 0 (zeros if absent).
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::string& field,
                       const render::RenderSettings& settings, const GpuRenderOptions& options = {});
+// Same with explicit per-point scalars.
+GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
+                      const render::RenderSettings& settings, const GpuRenderOptions& options = {});
+
+// The CPU reference's image of the same frame (Grid mode: the same samples as the GPU).
+scene::Image renderReference(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
+                             const render::RenderSettings& settings);
+
+struct ImageCheck {
+  double maxRmse = 1.0 / 255.0;
+  double maxAbs = 0.05;
+};
+// Compares with the reference; on failure writes reference/result/difference PNGs under the test
+// output folder and reports where. Returns the error for further checks.
+scene::ImageError expectImagesClose(const std::string& name, const scene::Image& reference,
+                                    const scene::Image& result, const ImageCheck& check = {});
 
 // A transfer function with constant colour and opacity (for analytic tests).
 scene::TransferFunction constantTransferFunction(glm::vec3 rgb, float opacity, double unitDistance);
