@@ -8,5 +8,6 @@ namespace sm::app {
 
 void registerInfo(CLI::App& app);      // cmd_info.cpp
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
+void registerRender(CLI::App& app);    // cmd_render.cpp
 
 }  // namespace sm::app

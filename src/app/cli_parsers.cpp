@@ -1,0 +1,67 @@
+#include "app/cli_parsers.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include "common/error.h"
+
+namespace sm::app {
+namespace {
+
+std::vector<double> numbers(const std::string& option, const std::string& value, char sep, size_t count) {
+  std::vector<double> out;
+  std::stringstream ss(value);
+  std::string item;
+  while (std::getline(ss, item, sep)) {
+    char* end = nullptr;
+    double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(d))
+      throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+    out.push_back(d);
+  }
+  if (out.size() != count) throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+  return out;
+}
+
+}  // namespace
+
+std::pair<int, int> parseSize(const std::string& option, const std::string& value) {
+  auto v = numbers(option, value, 'x', 2);
+  if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] > 16384 || v[1] > 16384)
+    throw Error(option, ": '", value, "' is not an image size WxH (1 .. 16384)");
+  return {int(v[0]), int(v[1])};
+}
+
+glm::dvec3 parseVec3(const std::string& option, const std::string& value) {
+  auto v = numbers(option, value, ',', 3);
+  return {v[0], v[1], v[2]};
+}
+
+std::pair<double, double> parseRange(const std::string& option, const std::string& value) {
+  auto v = numbers(option, value, ',', 2);
+  if (!(v[0] < v[1])) throw Error(option, ": '", value, "' needs LO < HI");
+  return {v[0], v[1]};
+}
+
+double parsePositive(const std::string& option, const std::string& value) {
+  double v = numbers(option, value, ',', 1)[0];
+  if (!(v > 0)) throw Error(option, ": ", value, " must be positive");
+  return v;
+}
+
+comp::ListMode parseListMode(const std::string& value) {
+  if (value == "two-pass") return comp::ListMode::TwoPass;
+  if (value == "drop") return comp::ListMode::FixedDrop;
+  if (value == "merge") return comp::ListMode::FixedMerge;
+  throw Error("--lists: '", value, "' (use two-pass, drop or merge)");
+}
+
+comp::Encoding parseEncoding(const std::string& value) {
+  if (value == "float") return comp::Encoding::Float;
+  if (value == "rgba8") return comp::Encoding::Rgba8;
+  throw Error("--encoding: '", value, "' (use float or rgba8)");
+}
+
+}  // namespace sm::app

@@ -1,0 +1,20 @@
+// Parsers for option values (sizes, vectors, ranges, enums) with one-line errors naming the option.
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include <glm/vec3.hpp>
+
+#include "compositor/deep_compositor.h"
+
+namespace sm::app {
+
+std::pair<int, int> parseSize(const std::string& option, const std::string& value);       // "WxH"
+glm::dvec3 parseVec3(const std::string& option, const std::string& value);                // "x,y,z"
+std::pair<double, double> parseRange(const std::string& option, const std::string& value);  // "lo,hi"
+double parsePositive(const std::string& option, const std::string& value);                 // > 0, finite
+comp::ListMode parseListMode(const std::string& value);    // two-pass | drop | merge
+comp::Encoding parseEncoding(const std::string& value);    // float | rgba8
+
+}  // namespace sm::app

@@ -1,0 +1,44 @@
+// One `shellmarch render` run on one rank: load this rank's share, prepare (through the cache),
+// upload, render the requested time steps, composite, write PNGs on rank 0.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "app/collectives.h"
+#include "app/rank_share.h"
+#include "compositor/deep_compositor.h"
+#include "scene/camera.h"
+
+namespace sm::app {
+
+struct RenderJob {
+  std::string mesh;
+  std::string field;          // "" = the first point field
+  std::string time = "0";     // step index or "all"
+  int width = 512, height = 512;
+  std::optional<glm::dvec3> eye, at, up;
+  double fovy = 30.0;
+  std::string view = "iso";
+  std::string colormap = "viridis";
+  std::optional<std::pair<double, double>> range;
+  double opacityScale = 1.0;
+  std::optional<double> unitDistance, step;
+  double earlyTermination = 0.99;
+  glm::vec3 background{0.1f, 0.1f, 0.12f};
+  ShareOptions share;
+  comp::CompositorOptions lists;
+  bool compact = true;
+  std::string device;
+  std::string cacheDir;       // "" = no preparation cache
+  std::string out = "shellmarch.png";
+  bool stats = false;
+  std::string statsJson;      // write statistics as JSON here
+};
+
+void runRender(const RenderJob& job, Collectives& coll);
+
+}  // namespace sm::app

@@ -1,0 +1,43 @@
+// --stats for render: setup and per-frame statistics, summed or maxed over ranks, printed as a
+// table on rank 0 and optionally written as JSON.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/collectives.h"
+#include "prep/prepared_rank.h"
+#include "render/gpu_scene.h"
+#include "render/render_settings.h"
+#include "render/renderer.h"
+
+namespace sm::app {
+
+struct RenderJob;
+
+// Per-pixel counts summarised: mean over non-empty pixels, maximum, non-empty pixels.
+struct PixelCountSummary {
+  double meanNonEmpty = 0;
+  uint32_t max = 0;
+  uint64_t nonEmpty = 0, total = 0;
+};
+PixelCountSummary summarise(const std::vector<uint32_t>& counts);
+
+class StatsReport {
+ public:
+  StatsReport(const RenderJob& job, Collectives& coll);
+  void setSetup(double loadSeconds, double prepSeconds, bool fromCache, const prep::PreparedRank& rank,
+                const render::GpuScene& gpu, const std::string& device, const render::RenderSettings& s);
+  void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer);
+  // Prints (rank 0) and writes JSON; throws when validation reported errors.
+  void finish(uint64_t validationErrors);
+
+ private:
+  const RenderJob& job_;
+  Collectives& coll_;
+  nlohmann::json json_;
+};
+
+}  // namespace sm::app
