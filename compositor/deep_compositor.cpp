@@ -1,6 +1,7 @@
 #include "compositor/deep_compositor.h"
 
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 
 #include "compositor_shaders.h"
@@ -123,6 +124,37 @@ void DeepCompositor::downloadCapacities(std::vector<uint32_t>& out) const {
 void DeepCompositor::downloadCounts(std::vector<uint32_t>& out) const {
   out.resize(uint64_t(width_) * height_);
   counts_.download(out.data(), out.size() * 4);
+}
+
+std::vector<std::vector<DcFragment>> DeepCompositor::downloadLists() const {
+  std::vector<uint32_t> counts, offsets(uint64_t(width_) * height_);
+  downloadCounts(counts);
+  if (options_.mode == ListMode::TwoPass) {
+    offsets_.download(offsets.data(), offsets.size() * 4);
+  } else {
+    for (size_t p = 0; p < offsets.size(); ++p) offsets[p] = uint32_t(p * options_.fixedK);
+  }
+  std::vector<std::vector<DcFragment>> out(counts.size());
+  if (!fragments_.valid()) return out;
+  const uint32_t bytes = fragmentBytes(options_.encoding);
+  std::vector<uint8_t> raw(fragments_.size());
+  fragments_.download(raw.data(), raw.size());
+  for (size_t p = 0; p < counts.size(); ++p) {
+    for (uint32_t i = 0; i < counts[p]; ++i) {
+      const uint8_t* at = raw.data() + uint64_t(offsets[p] + i) * bytes;
+      DcFragment f;
+      if (options_.encoding == Encoding::Float) {
+        std::memcpy(&f, at, sizeof f);
+      } else {
+        DcPackedFragment q;
+        std::memcpy(&q, at, sizeof q);
+        for (int c = 0; c < 4; ++c) f.color[c] = float((q.rgba8 >> (8 * c)) & 0xFF) / 255.0f;
+        f.depth = q.depth;
+      }
+      out[p].push_back(f);
+    }
+  }
+  return out;
 }
 
 }  // namespace sm::comp

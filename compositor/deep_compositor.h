@@ -76,6 +76,8 @@ class DeepCompositor {
   // Per-pixel list capacities (two-pass) and fragment counts of the last frame, for statistics.
   void downloadCapacities(std::vector<uint32_t>& out) const;
   void downloadCounts(std::vector<uint32_t>& out) const;
+  // This rank's lists of the last frame, per pixel in list order, decoded to floats (tests).
+  std::vector<std::vector<DcFragment>> downloadLists() const;
 
  private:
   void growFragments(uint64_t count);

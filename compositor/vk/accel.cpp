@@ -40,21 +40,14 @@ void buildBarrier(VkCommandBuffer cmd) {
 
 }  // namespace
 
-AccelerationStructure AccelerationStructure::buildTriangles(
-    const Context& ctx, const Buffer& positions, uint32_t vertexCount, const Buffer& indices,
-    uint32_t triangleCount, bool compact, const std::string& name) {
-  VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
-  geom.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-  geom.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
-  auto& tri = geom.geometry.triangles;
-  tri.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
-  tri.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
-  tri.vertexData.deviceAddress = positions.address();
-  tri.vertexStride = 3 * sizeof(float);
-  tri.maxVertex = vertexCount ? vertexCount - 1 : 0;
-  tri.indexType = VK_INDEX_TYPE_UINT32;
-  tri.indexData.deviceAddress = indices.address();
+namespace {
 
+// Builds a BLAS over one geometry and compacts it when asked and worthwhile.
+AccelerationStructure buildBottomLevel(
+    const Context& ctx, const VkAccelerationStructureGeometryKHR& geom, uint32_t primitiveCount,
+    bool compact, const std::string& name,
+    AccelerationStructure (*create)(const Context&, VkAccelerationStructureTypeKHR, VkDeviceSize,
+                                    const std::string&)) {
   VkAccelerationStructureBuildGeometryInfoKHR build{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
   build.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
@@ -67,16 +60,15 @@ AccelerationStructure AccelerationStructure::buildTriangles(
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
   ctx.fn().getAccelerationStructureBuildSizes(ctx.device(),
                                               VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
-                                              &build, &triangleCount, &sizes);
+                                              &build, &primitiveCount, &sizes);
   AccelerationStructure blas = create(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
                                       sizes.accelerationStructureSize, name);
   Buffer scratch(ctx, sizes.buildScratchSize, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Device,
                  name + " scratch");
   build.dstAccelerationStructure = blas.handle();
   build.scratchData.deviceAddress = scratch.address();
-  VkAccelerationStructureBuildRangeInfoKHR range{triangleCount, 0, 0, 0};
+  VkAccelerationStructureBuildRangeInfoKHR range{primitiveCount, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
-
   DeviceHandle<VkQueryPool> query;
   if (compact) {
     VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -112,6 +104,37 @@ AccelerationStructure AccelerationStructure::buildTriangles(
     ctx.fn().cmdCopyAccelerationStructure(cmd, &copy);
   });
   return small;
+}
+
+}  // namespace
+
+AccelerationStructure AccelerationStructure::buildTriangles(
+    const Context& ctx, const Buffer& positions, uint32_t vertexCount, const Buffer& indices,
+    uint32_t triangleCount, bool compact, const std::string& name) {
+  VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  geom.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+  geom.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+  auto& tri = geom.geometry.triangles;
+  tri.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
+  tri.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+  tri.vertexData.deviceAddress = positions.address();
+  tri.vertexStride = 3 * sizeof(float);
+  tri.maxVertex = vertexCount ? vertexCount - 1 : 0;
+  tri.indexType = VK_INDEX_TYPE_UINT32;
+  tri.indexData.deviceAddress = indices.address();
+  return buildBottomLevel(ctx, geom, triangleCount, compact, name, &AccelerationStructure::create);
+}
+
+AccelerationStructure AccelerationStructure::buildBoxes(const Context& ctx, const Buffer& aabbs,
+                                                        uint32_t count, bool compact,
+                                                        const std::string& name) {
+  VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  geom.geometryType = VK_GEOMETRY_TYPE_AABBS_KHR;
+  geom.flags = 0;  // not opaque: every candidate box reaches the shader's exact test
+  geom.geometry.aabbs.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR;
+  geom.geometry.aabbs.data.deviceAddress = aabbs.address();
+  geom.geometry.aabbs.stride = sizeof(VkAabbPositionsKHR);
+  return buildBottomLevel(ctx, geom, count, compact, name, &AccelerationStructure::create);
 }
 
 AccelerationStructure AccelerationStructure::buildInstance(const Context& ctx,

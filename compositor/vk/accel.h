@@ -24,17 +24,23 @@ class AccelerationStructure {
                                               uint32_t vertexCount, const Buffer& indices,
                                               uint32_t triangleCount, bool compact,
                                               const std::string& name);
-  // TLAS with one identity instance of `blas`, or with no instance at all (blas == nullptr), so that
-  // a rank with no elements runs the same shaders and simply finds nothing.
+  // BLAS over axis-aligned boxes (VkAabbPositionsKHR, `count` of them): procedural primitives whose
+  // intersections the shader decides. Not opaque, so every candidate reaches the shader.
+  static AccelerationStructure buildBoxes(const Context& ctx, const Buffer& aabbs, uint32_t count,
+                                          bool compact, const std::string& name);
+  // TLAS with one identity instance of `blas`, or with no instance at all (blas == nullptr), so
+  // that a rank with no elements runs the same shaders and simply finds nothing.
   static AccelerationStructure buildInstance(const Context& ctx, const AccelerationStructure* blas,
                                              const std::string& name);
+
+  // An empty structure of the given type and size, with its storage (used by the builders).
+  static AccelerationStructure create(const Context& ctx, VkAccelerationStructureTypeKHR type,
+                                      VkDeviceSize size, const std::string& name);
 
  private:
   Buffer storage_;
   DeviceHandle<VkAccelerationStructureKHR> as_;
   VkDeviceAddress address_ = 0;
-  static AccelerationStructure create(const Context& ctx, VkAccelerationStructureTypeKHR type,
-                                      VkDeviceSize size, const std::string& name);
 };
 
 }  // namespace sm::vk

@@ -38,37 +38,70 @@ vec3 parametricCenter(uint type) {
   return vec3(0.5);
 }
 
-// Parametric coordinates of x in the element with corner positions P (relative to P[0] is fine:
-// pass x relative to the same origin). `p` is the starting guess and receives the result.
+vec3 isoparametricPosition(uint type, vec3 P[8], vec3 p) {
+  float N[8];
+  vec3 dN[8];
+  shapeFunctions(type, p, N, dN);
+  vec3 x = vec3(0.0);
+  for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) x += N[i] * P[i];
+  return x;
+}
+
+// Parametric coordinates of x in the element with corner positions P (any common origin for P and
+// x). `p` is the starting guess and receives the result. Newton's method with step halving on the
+// residual, so that it converges from the element centre even in strongly warped cells; points just
+// outside the element (between a warped face and its two triangles) converge to coordinates just
+// outside [0, 1], which interpolateIsoparametric clamps.
 void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
   uint nv = SM_NUM_VERTS[type];
-  for (int it = 0; it < 12; ++it) {
+  vec3 res = isoparametricPosition(type, P, p) - x;
+  float rn = dot(res, res);
+  for (int it = 0; it < 16; ++it) {
     float N[8];
     vec3 dN[8];
     shapeFunctions(type, p, N, dN);
-    vec3 f = -x;
     mat3 J = mat3(0.0);  // columns: d(position)/dr, /ds, /dt
     for (uint i = 0u; i < nv; ++i) {
-      f += N[i] * P[i];
       J[0] += dN[i].x * P[i];
       J[1] += dN[i].y * P[i];
       J[2] += dN[i].z * P[i];
     }
-    float det = determinant(J);
-    if (abs(det) < 1e-30) break;
-    vec3 delta = inverse(J) * f;
-    p -= delta;
-    // Keep the iterate near the element: a point outside by rounding stays bounded.
-    p = clamp(p, vec3(-0.5), vec3(1.5));
-    if (dot(delta, delta) < 1e-12) break;
+    if (!(abs(determinant(J)) > 1e-30)) return;
+    vec3 delta = -(inverse(J) * res);
+    bool accepted = false;
+    vec3 pn = p, rnext = res;
+    float rnn = rn;
+    for (int h = 0; h < 6 && !accepted; ++h) {
+      pn = clamp(p + delta, vec3(-1.0), vec3(2.0));
+      rnext = isoparametricPosition(type, P, pn) - x;
+      rnn = dot(rnext, rnext);
+      accepted = rnn < rn || max(abs(delta.x), max(abs(delta.y), abs(delta.z))) <= 1e-6;
+      delta *= 0.5;
+    }
+    if (!accepted) return;  // no descent along the Newton direction: as good as it gets
+    vec3 moved = abs(pn - p);
+    p = pn;
+    res = rnext;
+    rn = rnn;
+    if (max(moved.x, max(moved.y, moved.z)) <= 1e-6) return;
   }
+}
+
+// Euclidean projection of (r, s) onto the triangle r, s >= 0, r + s <= 1.
+vec2 projectToTriangle(vec2 q) {
+  if (max(q.x, 0.0) + max(q.y, 0.0) <= 1.0) return max(q, vec2(0.0));
+  float hi = max(q.x, q.y), lo = min(q.x, q.y);
+  float theta = hi - 1.0;
+  float c = (hi + lo - 1.0) * 0.5;
+  if (lo - c > 0.0) theta = c;
+  return max(q - vec2(theta), vec2(0.0));
 }
 
 float interpolateIsoparametric(uint type, vec3 p, float S[8]) {
   float N[8];
   vec3 dN[8];
   vec3 q = clamp(p, vec3(0.0), vec3(1.0));
-  if (type == SM_WED && q.x + q.y > 1.0) q.xy /= (q.x + q.y);
+  if (type == SM_WED) q.xy = projectToTriangle(p.xy);
   shapeFunctions(type, q, N, dN);
   float s = 0.0;
   for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) s += N[i] * S[i];

@@ -9,13 +9,15 @@
 #include "scene_access.glsl"
 #include "interpolate.glsl"
 
-// An element entered through `entryFace` at ray distance tIn, where the scalar is sIn.
+// An element entered through `entryFace` at ray distance tIn (crossing slopes slopeIn, for ties),
+// where the scalar is sIn.
 struct Walk {
   uint type;
   uint index;
   uint v[8];
   int entryFace;
   float tIn;
+  vec2 slopeIn;
   float sIn;
 };
 
@@ -65,16 +67,27 @@ uint faceTriangles(uint type, uint v[8], uint f, out uint tri[6]) {
 }
 
 // The face through which the ray leaves the element (side = +1) or, walking backward, came in
-// (side = -1), other than `skipFace`. Forward picks the nearest crossing at or beyond tRef (a
-// warped, non-convex element may be crossed more than once); backward the nearest at or before it.
-bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, float tRef, out int face,
-                  out float t, out float s) {
-  bool found = false;
+// (side = -1). Crossings are ordered as the perturbed ray meets them, (t, slopes) lexicographically:
+// forward takes the first crossing strictly after the entry (tRef, slopeRef), backward the last
+// strictly before it. Strict progress in that order is what keeps a walk through a vertex or the
+// fold edge of a warped quad from cycling; in convex elements there is just one candidate anyway.
+bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, float tRef, vec2 slopeRef,
+                  out int face, out float t, out vec2 slope, out float s) {
+  // Best candidate ahead of the entry (nearest first), and best one not ahead (least far behind):
+  // a convex element has a single exit, whatever rounding says about its order.
+  bool foundAhead = false, foundOther = false;
+  int faceOther = -1;
+  float tOther = 0.0, sOther = 0.0;
+  vec2 slopeOther = vec2(0.0);
   face = -1;
   t = 0.0;
+  slope = vec2(0.0);
   s = 0.0;
   for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
-    if (int(f) == skipFace) continue;
+    // The side test excludes the triangle the ray came through; skipping the whole entry face is
+    // an optimisation valid for triangles only: a warped quad can fold so that the ray leaves
+    // through the other triangle of the quad it came in by.
+    if (int(f) == skipFace && smFaceSize(type, f) == 3u) continue;
     uint tri[6];
     uint nt = faceTriangles(type, v, f, tri);
     for (uint k = 0u; k < nt; ++k) {
@@ -82,28 +95,45 @@ bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, f
       if (crossingSide(g.P[a].xy, g.P[b].xy, g.P[c].xy) != side) continue;
       float tc;
       vec3 w;
-      triangleCrossing(v[a], v[b], v[c], g.P[a], g.P[b], g.P[c], tc, w);
-      bool ahead = side > 0 ? tc >= tRef : tc <= tRef;
-      bool bestAhead = side > 0 ? t >= tRef : t <= tRef;
-      bool better;
-      if (!found) better = true;
-      else if (ahead != bestAhead) better = ahead;
-      else if (ahead) better = side > 0 ? tc < t : tc > t;  // the nearest crossing ahead
-      else better = side > 0 ? tc > t : tc < t;             // else the least far behind
-      if (better) {
-        found = true;
+      vec2 sc;
+      triangleCrossing(v[a], v[b], v[c], g.P[a], g.P[b], g.P[c], tc, w, sc);
+      float value = w.x * g.S[a] + w.y * g.S[b] + w.z * g.S[c];
+      if (type == SM_TET) {  // convex with planar faces: the first crossing is the only one
         face = int(f);
         t = tc;
-        s = w.x * g.S[a] + w.y * g.S[b] + w.z * g.S[c];
+        slope = sc;
+        s = value;
+        return true;
       }
-      if (type == SM_TET) return found;  // convex with planar faces: the first is the only one
+      bool ahead = side > 0 ? crossingBefore(tRef, slopeRef, tc, sc) : crossingBefore(tc, sc, tRef, slopeRef);
+      if (ahead) {
+        if (!foundAhead || (side > 0 ? crossingBefore(tc, sc, t, slope) : crossingBefore(t, slope, tc, sc))) {
+          foundAhead = true;
+          face = int(f);
+          t = tc;
+          slope = sc;
+          s = value;
+        }
+      } else if (!foundOther ||
+                 (side > 0 ? crossingBefore(tOther, slopeOther, tc, sc) : crossingBefore(tc, sc, tOther, slopeOther))) {
+        foundOther = true;
+        faceOther = int(f);
+        tOther = tc;
+        slopeOther = sc;
+        sOther = value;
+      }
     }
   }
-  return found;
+  if (foundAhead) return true;
+  face = faceOther;
+  t = tOther;
+  slope = slopeOther;
+  s = sOther;
+  return foundOther;
 }
 
 // Moves the walk across face f (of the current element) into neighbour `ref`.
-bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, float s) {
+bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, vec2 slope, float s) {
   uint n = smFaceSize(w.type, f);
   uint k[4];
   for (uint i = 0u; i < n; ++i) k[i] = w.v[smFaceVert(w.type, f, n - 1u - i)];  // reversed: its outward order
@@ -114,6 +144,7 @@ bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, float s) {
   w.entryFace = decodeElement(sc, w.type, w.index, k, n, v);
   w.v = v;
   w.tIn = t;
+  w.slopeIn = slope;
   w.sIn = s;
   return w.entryFace >= 0;
 }
@@ -145,7 +176,8 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
     ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
     int f;
     float tOut, sOut;
-    if (!findCrossing(w.type, w.v, g, w.entryFace, 1, w.tIn, f, tOut, sOut)) {
+    vec2 slopeOut;
+    if (!findCrossing(w.type, w.v, g, w.entryFace, 1, w.tIn, w.slopeIn, f, tOut, slopeOut, sOut)) {
       r.status = MARCH_LOST;
       return r;
     }
@@ -164,12 +196,12 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
       r.status = MARCH_OK;
       return r;
     }
-    uint prevType = w.type;
-    if (!crossInto(sc, w, uint(f), ref, tOut, sOut)) {
+    if (!crossInto(sc, w, uint(f), ref, tOut, slopeOut, sOut)) {
       r.status = MARCH_LOST;
       return r;
     }
-    if (w.type != prevType) guess = parametricCenter(w.type);
+    // A new element: start Newton from its centre, not from the last element's coordinates.
+    guess = parametricCenter(w.type);
   }
   return r;
 }
@@ -184,16 +216,18 @@ bool walkBack(RayFrame fr, FrameParams fp, inout Walk w, float tStart, inout uin
     ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
     int f;
     float tB, sB;
-    if (!findCrossing(w.type, w.v, g, w.entryFace, -1, w.tIn, f, tB, sB)) return false;
+    vec2 slopeB;
+    if (!findCrossing(w.type, w.v, g, w.entryFace, -1, w.tIn, w.slopeIn, f, tB, slopeB, sB)) return false;
     tB = min(tB, w.tIn);
     uint ref = neighborOf(sc, w.type, w.index, faceSlot(w.type, w.v, uint(f)));
     if (tB <= tStart || ref == SM_NO_NEIGHBOR) {
       w.entryFace = f;
       w.tIn = tB;
+      w.slopeIn = slopeB;
       w.sIn = sB;
       return true;
     }
-    if (!crossInto(sc, w, uint(f), ref, tB, sB)) return false;
+    if (!crossInto(sc, w, uint(f), ref, tB, slopeB, sB)) return false;
   }
   return false;
 }

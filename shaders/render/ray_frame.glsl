@@ -91,10 +91,13 @@ int crossingSide(vec2 a, vec2 b, vec2 c) {
   return 0;
 }
 
-// Where the ray crosses triangle (ids ia, ib, ic; projected pa, pb, pc): distance t and barycentric
-// weights (of a, b, c). Computed in ascending id order so that every element (on every rank) that
-// shares the face gets bit-identical results.
-void triangleCrossing(uint ia, uint ib, uint ic, vec3 pa, vec3 pb, vec3 pc, out float t, out vec3 w) {
+// Where the ray crosses triangle (ids ia, ib, ic; projected pa, pb, pc): distance t, barycentric
+// weights (of a, b, c), and the slopes (a, b) of the triangle's plane in the frame, z = t + a x + b y.
+// The slopes order crossings that tie in t as the perturbed ray (moved by (eps, eps^2)) meets them:
+// at t + a eps + b eps^2. Computed in ascending id order so that every element (on every rank)
+// sharing the face gets bit-identical results.
+void triangleCrossing(uint ia, uint ib, uint ic, vec3 pa, vec3 pb, vec3 pc, out float t, out vec3 w,
+                      out vec2 slope) {
   vec3 p0 = pa, p1 = pb, p2 = pc;
   uvec3 slot = uvec3(0u, 1u, 2u);  // where each sorted vertex came from
   uint i0 = ia, i1 = ib, i2 = ic;
@@ -106,10 +109,19 @@ void triangleCrossing(uint ia, uint ib, uint ic, vec3 pa, vec3 pb, vec3 pc, out 
   precise float s = p0.x * p1.y - p0.y * p1.x;
   precise float det = u + v + s;
   vec3 ws;
+  slope = vec2(0.0);
   if (det != 0.0) {
     precise float num = u * p0.z + v * p1.z + s * p2.z;
     t = num / det;
     ws = vec3(u, v, s) / det;
+    precise vec3 d1 = p1 - p0;
+    precise vec3 d2 = p2 - p0;
+    precise float area = d1.x * d2.y - d2.x * d1.y;
+    if (area != 0.0) {
+      precise float sa = d1.z * d2.y - d2.z * d1.y;
+      precise float sb = d1.x * d2.z - d2.x * d1.z;
+      slope = vec2(sa / area, sb / area);
+    }
   } else {  // edge-on in float: the three feet agree to rounding
     t = (p0.z + p1.z + p2.z) / 3.0;
     ws = vec3(1.0 / 3.0);
@@ -117,6 +129,17 @@ void triangleCrossing(uint ia, uint ib, uint ic, vec3 pa, vec3 pb, vec3 pc, out 
   w[slot.x] = ws.x;
   w[slot.y] = ws.y;
   w[slot.z] = ws.z;
+}
+
+// Crossing order along the perturbed ray: by t, and where two crossings lie at the same point (a ray
+// through a vertex or edge), by the slopes. The same point reached through different triangles gets
+// t values that differ by rounding (the formula weighs different vertices), so t within a few ulps
+// counts as a tie.
+bool crossingBefore(float t0, vec2 s0, float t1, vec2 s1) {
+  float tolerance = (abs(t0) + abs(t1)) * 4.8e-7;
+  if (abs(t0 - t1) > tolerance) return t0 < t1;
+  if (s0.x != s1.x) return s0.x < s1.x;
+  return s0.y < s1.y;
 }
 
 #endif

@@ -21,11 +21,14 @@ void main() {
     uint pixel = px.y * fp.width + px.x;
     RayFrame fr = pixelRay(fp, px);
     wr = dcBegin(fp.fragments, pixel * fp.fragK, fp.fragK);
-    float tMin = 0.0, prevEnd = 0.0, transmittance = 1.0;
+    float prevEnd = 0.0, transmittance = 1.0;
     Segment seg;
-    while (nseg < fp.maxSegments && nextSegment(fr, tMin, 3.0e38, seg)) {
+    Segment prev = firstSearchPoint();
+    bool inside = insideSegment(fr, fp, seg);
+    while (nseg < fp.maxSegments && (inside || nextEntrySegment(fr, fp.scene, prev, seg))) {
       nseg += 1u;
-      tMin = resumeAfter(seg.tExit);
+      if (!inside) prev = seg;
+      inside = false;
       DcFragment frag;
       if (integrateSegment(fr, fp, seg, prevEnd, frag, st)) {
         dcWrite(wr, frag);

@@ -12,17 +12,16 @@ struct SegmentStats {
 
 SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u); }
 
-// Integrates `seg`, sampling from max(seg.tStart, prevEnd) on; returns false when the exact
-// predicates say the ray does not cross this segment (it grazes) or the walk is lost.
+// Integrates `seg`, sampling from max(its entry, prevEnd) on; returns false when the segment gives
+// no fragment (in device-triangle mode, the exact predicates may say the ray only grazes there).
 bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prevEnd, out DcFragment frag,
                       inout SegmentStats st) {
   frag.color = vec4(0.0);
   frag.depth = 0.0;
   SceneRefs sc = fp.scene;
-  float tBound = max(seg.tStart, prevEnd);
   Walk w;
   if (seg.entryTriangle != kNoTriangle) {
-    uint t = confirmShellTriangle(fr, sc, seg.entryTriangle, -1, st.walks);
+    uint t = kExactShell ? seg.entryTriangle : confirmShellTriangle(fr, sc, seg.entryTriangle, -1, st.walks);
     if (t == kNoTriangle) {
       st.grazing += 1u;
       return false;
@@ -32,20 +31,19 @@ bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prev
       return false;
     }
   } else {
-    // No entry between tStart and the exit: the segment starts inside (camera in the volume, or
-    // shells of one rank that overlap). Walk back from the exit to the element holding tBound.
-    uint x = confirmShellTriangle(fr, sc, seg.exitTriangle, 1, st.walks);
+    // The eye is inside the volume: walk back from the first exit to the element holding the eye.
+    uint x = kExactShell ? seg.exitTriangle : confirmShellTriangle(fr, sc, seg.exitTriangle, 1, st.walks);
     if (x == kNoTriangle) {
       st.grazing += 1u;
       return false;
     }
-    if (!walkFromShell(fr, sc, x, w) || !walkBack(fr, fp, w, tBound, st.steps)) {
+    if (!walkFromShell(fr, sc, x, w) || !walkBack(fr, fp, w, 0.0, st.steps)) {
       st.lost += 1u;
       return false;
     }
-    if (tBound == 0.0) st.inside += 1u;
+    st.inside += 1u;
   }
-  float tLo = max(w.tIn, tBound);
+  float tLo = max(w.tIn, max(prevEnd, 0.0));
   MarchResult r = marchSegment(fr, fp, w, tLo);
   st.steps += r.steps;
   st.samples += r.samples;
@@ -54,7 +52,7 @@ bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prev
   prevEnd = max(prevEnd, r.tEnd);
   frag.color = r.color;
   frag.depth = tLo;
-  return r.status != MARCH_LOST || r.color.a > 0.0;
+  return true;
 }
 
 void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, uint overflow) {
@@ -75,7 +73,13 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
   }
 }
 
+layout(buffer_reference, scalar) readonly buffer SmRays { RayDesc v[]; };
+
 RayFrame pixelRay(FrameParams fp, uvec2 px) {
+  if (fp.rays != 0ul) {
+    RayDesc r = SmRays(fp.rays).v[px.y * fp.width + px.x];
+    return makeRayFrame(r.origin, r.direction);
+  }
   float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.tanHalfFovy * fp.aspect;
   float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.tanHalfFovy;
   return makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));

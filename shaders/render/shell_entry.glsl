@@ -7,6 +7,10 @@
 
 const uint kNoTriangle = 0xFFFFFFFFu;
 
+// True when the shell BLAS holds boxes and the exact predicates decide every shell crossing
+// (shell_query.glsl); false when the device's triangle test does.
+layout(constant_id = 11) const bool kExactShell = true;
+
 uvec3 shellTriangle(SceneRefs sc, uint tri) {
   SmUints idx = SmUints(sc.shellIndices);
   return uvec3(idx.v[3u * tri], idx.v[3u * tri + 1u], idx.v[3u * tri + 2u]);
@@ -57,7 +61,7 @@ bool walkFromShell(RayFrame fr, SceneRefs sc, uint tri, out Walk w) {
   vec3 p1 = projectVertex(fr, vertexPosition(sc, ids.y));
   vec3 p2 = projectVertex(fr, vertexPosition(sc, ids.z));
   vec3 bary;
-  triangleCrossing(ids.x, ids.y, ids.z, p0, p1, p2, w.tIn, bary);
+  triangleCrossing(ids.x, ids.y, ids.z, p0, p1, p2, w.tIn, bary, w.slopeIn);
   w.sIn = bary.x * vertexScalar(sc, ids.x) + bary.y * vertexScalar(sc, ids.y) + bary.z * vertexScalar(sc, ids.z);
   return w.entryFace >= 0;
 }

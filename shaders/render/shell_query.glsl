@@ -1,10 +1,19 @@
-// Shell-to-shell traversal (the paper's "Per-Node Segment Generation via Shell Traversal"): a ray
-// traced from tMin with front faces culled finds the next exit from this rank's volume; a ray
-// traced back from that exit, again culling front faces, finds the entry that belongs to it. Gaps
-// and overlaps between clusters are then harmless: each segment is an entry/exit pair of one
-// closed shell. Hardware (or lavapipe) decides which triangle a ray hits with its own watertight
-// test; where that disagrees with our exact predicates (a ray within rounding of a shell edge or
-// vertex) we walk the shell's edge adjacency to the triangle our predicates choose.
+// Shell traversal: the segments of this rank's volume along a ray. Entries are found in order with
+// the shell's acceleration structure; each segment is then marched from its entry to wherever the
+// element walk leaves the volume (so exits come from the exact walk). A ray that starts inside the
+// volume has one more segment, found from its first exit.
+//
+// Versus the paper (exit first, entry found looking back from it): entry-first needs one shell
+// query per segment instead of two, and stays right when shells of one rank overlap (pieces that
+// were not welded): every entry starts a segment, and the march pass samples each segment only
+// beyond where the previous one ended, so an overlap is neither lost nor counted twice.
+//
+// Who decides that a ray crosses a shell triangle:
+//   kExactShell (default): the BLAS holds one padded box per triangle; the device only narrows the
+//     search and each candidate is decided by the exact predicates the marcher uses, so traversal
+//     and marching can never disagree, also for rays through shell vertices and edges.
+//   otherwise: the device's triangle test decides (fast on RT cores); where it disagrees with the
+//     exact predicates the marcher walks the shell adjacency (shell_entry.glsl).
 #ifndef SM_SHELL_QUERY_GLSL
 #define SM_SHELL_QUERY_GLSL
 
@@ -14,34 +23,92 @@
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT tlas;
 
-const uint kShellRayFlags = gl_RayFlagsOpaqueEXT | gl_RayFlagsCullFrontFacingTrianglesEXT;
-
-// Distance past an exit at which the search for the next one resumes: a few ulps of t, so the same
-// triangle is not found again.
-float resumeAfter(float t) { return t + max(abs(t), 1e-20) * 2e-6; }
-
-// Next segment beyond tMin: false when the ray has left this rank's volume for good.
-bool nextSegment(RayFrame fr, float tMin, float tMax, out Segment seg) {
+// Exact mode: the first crossing with the wanted side (-1 entry, +1 exit) after (tPrev, triPrev) in
+// (t, triangle) order, so that crossings at equal t (coincident shells) are each found once.
+bool exactCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, float tMax, int side, out uint tri,
+                   out float tBest) {
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, tlas, kShellRayFlags, 0xFF, fr.org, tMin, fr.dir, tMax);
+  rayQueryInitializeEXT(q, tlas, gl_RayFlagsNoneEXT, 0xFF, fr.org, max(tPrev, 0.0), fr.dir, tMax);
+  bool found = false;
+  tri = kNoTriangle;
+  tBest = tMax;
+  while (rayQueryProceedEXT(q)) {
+    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
+    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
+    uvec3 ids = shellTriangle(sc, p);
+    vec3 p0 = projectVertex(fr, vertexPosition(sc, ids.x));
+    vec3 p1 = projectVertex(fr, vertexPosition(sc, ids.y));
+    vec3 p2 = projectVertex(fr, vertexPosition(sc, ids.z));
+    if (crossingSide(p0.xy, p1.xy, p2.xy) != side) continue;
+    float t;
+    vec3 w;
+    vec2 slope;
+    triangleCrossing(ids.x, ids.y, ids.z, p0, p1, p2, t, w, slope);
+    bool after = t > tPrev || (t == tPrev && triPrev != kNoTriangle && p > triPrev);
+    if (!after || t > tBest || (found && t == tBest && p > tri)) continue;
+    found = true;
+    tri = p;
+    tBest = t;
+    // The device may only prune what lies beyond a committed hit; keep its t inside its range.
+    rayQueryGenerateIntersectionEXT(q, clamp(t, max(tPrev, 0.0), tMax));
+  }
+  return found;
+}
+
+// Device mode: the nearest triangle hit beyond tPrev facing the wanted way (-1: entries are the
+// front faces, so back faces are culled; +1: exits, front faces culled).
+bool deviceCrossing(RayFrame fr, float tPrev, float tMax, int side, out uint tri, out float t) {
+  uint flags = gl_RayFlagsOpaqueEXT |
+               (side < 0 ? gl_RayFlagsCullBackFacingTrianglesEXT : gl_RayFlagsCullFrontFacingTrianglesEXT);
+  rayQueryEXT q;
+  float tMin = max(tPrev, 0.0);
+  tMin += max(abs(tMin), 1e-20) * 2e-6;  // a few ulps past the last hit, or it is found again
+  rayQueryInitializeEXT(q, tlas, flags, 0xFF, fr.org, tMin, fr.dir, tMax);
   while (rayQueryProceedEXT(q)) {
   }
   if (rayQueryGetIntersectionTypeEXT(q, true) != gl_RayQueryCommittedIntersectionTriangleEXT) return false;
-  float tx = rayQueryGetIntersectionTEXT(q, true);
-  seg.tStart = tMin;
-  seg.tExit = tx;
-  seg.exitTriangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, true));
-  seg.entryTriangle = kNoTriangle;
-  float back = tx - tMin;
-  if (back > 0.0) {
-    rayQueryEXT b;
-    rayQueryInitializeEXT(b, tlas, kShellRayFlags, 0xFF, fr.org + tx * fr.dir, 0.0, -fr.dir, back);
-    while (rayQueryProceedEXT(b)) {
-    }
-    if (rayQueryGetIntersectionTypeEXT(b, true) == gl_RayQueryCommittedIntersectionTriangleEXT)
-      seg.entryTriangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(b, true));
-  }
+  tri = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, true));
+  t = rayQueryGetIntersectionTEXT(q, true);
   return true;
+}
+
+bool nextCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, int side, out uint tri, out float t) {
+  const float tMax = 3.0e38;
+  if (kExactShell) return exactCrossing(fr, sc, tPrev, triPrev, tMax, side, tri, t);
+  return deviceCrossing(fr, tPrev, tMax, side, tri, t);
+}
+
+// The segment that starts inside the volume (the eye is in it), if any: the first exit comes
+// before the first entry.
+bool insideSegment(RayFrame fr, FrameParams fp, out Segment seg) {
+  seg.tEntry = 0.0;
+  seg.reserved = 0.0;
+  seg.entryTriangle = kNoTriangle;
+  seg.exitTriangle = kNoTriangle;
+  if (fp.eyeMayBeInside == 0u) return false;
+  uint exitTri, entryTri;
+  float tx, te;
+  if (!nextCrossing(fr, fp.scene, 0.0, kNoTriangle, 1, exitTri, tx)) return false;
+  if (nextCrossing(fr, fp.scene, 0.0, kNoTriangle, -1, entryTri, te) && te <= tx) return false;
+  seg.exitTriangle = exitTri;
+  return true;
+}
+
+// The next entry after `prev` (an entry segment, or tEntry 0 / no triangle to start): false when
+// there is none.
+bool nextEntrySegment(RayFrame fr, SceneRefs sc, Segment prev, out Segment seg) {
+  seg.reserved = 0.0;
+  seg.exitTriangle = kNoTriangle;
+  return nextCrossing(fr, sc, prev.tEntry, prev.entryTriangle, -1, seg.entryTriangle, seg.tEntry);
+}
+
+Segment firstSearchPoint() {
+  Segment s;
+  s.tEntry = 0.0;
+  s.reserved = 0.0;
+  s.entryTriangle = kNoTriangle;
+  s.exitTriangle = kNoTriangle;
+  return s;
 }
 
 #endif

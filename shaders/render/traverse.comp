@@ -21,12 +21,16 @@ void main() {
   uint base = kStore ? SmUints(fp.segOffsets).v[pixel] : 0u;
   uint cap = kStore ? SmUints(fp.segCounts).v[pixel] : fp.maxSegments;
   uint n = 0u;
-  float tMin = 0.0;
   Segment seg;
-  while (n < cap && nextSegment(fr, tMin, 3.0e38, seg)) {
+  if (n < cap && insideSegment(fr, fp, seg)) {
     if (kStore) SmSegments(fp.segments).v[base + n] = seg;
     n += 1u;
-    tMin = resumeAfter(seg.tExit);
+  }
+  Segment prev = firstSearchPoint();
+  while (n < cap && nextEntrySegment(fr, fp.scene, prev, seg)) {
+    if (kStore) SmSegments(fp.segments).v[base + n] = seg;
+    n += 1u;
+    prev = seg;
   }
   if (!kStore) SmUints(fp.segCounts).v[pixel] = n;
 }

@@ -36,6 +36,7 @@ struct FrameParams {
   uint64_t fragCounts;        // uint per pixel: fragments written
   uint64_t fragments;         // fragment storage (encoding per the compositor)
   uint64_t stats;             // RenderStats
+  uint64_t rays;              // 0: camera rays; else one RayDesc per "pixel" (width x 1 image)
   // Camera, rebased to the scene origin.
   vec3 eye;
   float tanHalfFovy;
@@ -55,18 +56,24 @@ struct FrameParams {
   uint maxElementSteps;    // per segment: the march's step bound
   uint maxSegments;        // per ray: the traversal's bound
   uint fragK;              // fixed-length lists: slots per pixel
-  uint pixelBegin;         // first pixel this dispatch handles (tiling)
+  uint eyeMayBeInside;     // 0 when the eye is outside this rank's bounds: no ray starts inside
   uint pad0;
   uint pad1;
 };
 
+// An explicit ray (rebased origin, unit direction), for tests that aim rays at vertices and edges.
+struct RayDesc {
+  vec3 origin;
+  vec3 direction;
+};
+
 // One segment of a ray inside this rank's volume, from shell traversal.
 struct Segment {
-  float tStart;         // where sampling may begin (the previous segment's end, or the camera)
-  float tExit;          // the exit triangle's hardware hit
-  uint entryTriangle;   // shell triangle the hardware found behind the exit, or ~0u: the segment
-                        // starts inside the volume at tStart (camera inside, or overlapping shells)
-  uint exitTriangle;
+  float tEntry;         // distance of the entry crossing (0 for a segment that starts inside)
+  float reserved;
+  uint entryTriangle;   // shell triangle the ray enters through, or ~0u: the segment starts inside
+                        // the volume (the camera is in it) and is found from exitTriangle
+  uint exitTriangle;    // only for segments that start inside: the first exit
 };
 
 // Global counters (atomics) for --stats.
@@ -87,7 +94,8 @@ struct RenderStats {
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 14 * 8 + 7 * 8 + 4 * 16 + 12 * 4, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 14 * 8 + 8 * 8 + 4 * 16 + 12 * 4, "FrameParams layout");
+static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(RenderStats) == 48, "RenderStats layout");
 }  // namespace sm::gpu

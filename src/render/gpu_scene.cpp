@@ -1,5 +1,10 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+
 #include "common/error.h"
 
 namespace sm::render {
@@ -8,13 +13,42 @@ constexpr VkBufferUsageFlags kAsInput =
     VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 }
 
-GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r)
+namespace {
+
+// Padded boxes of the shell triangles. The padding keeps rays that run exactly along a triangle's
+// plane or edge from being missed by the device's float box test; the exact test then decides.
+std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r) {
+  float scale = 0.0f;
+  for (float p : r.positions) scale = std::max(scale, std::abs(p));
+  const float absolutePad = std::max(scale, 1e-30f) * 1e-6f;
+  std::vector<VkAabbPositionsKHR> boxes(r.numShellTriangles());
+  for (size_t t = 0; t < boxes.size(); ++t) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (int k = 0; k < 3; ++k) {
+      const float* p = &r.positions[3 * size_t(r.shellIndices[3 * t + k])];
+      lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
+      hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
+    }
+    glm::vec3 pad((hi.x - lo.x + hi.y - lo.y + hi.z - lo.z) * 1e-4f + absolutePad);
+    lo -= pad;
+    hi += pad;
+    boxes[t] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
+  }
+  return boxes;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeometry shell)
     : ctx_(ctx),
+      shell_(shell),
       compact_(r.compact),
       typesPresent_(r.typesPresent()),
       numVertices_(r.numVertices()),
       shellTriangles_(r.numShellTriangles()),
       origin_(r.frame.origin) {
+  for (size_t i = 0; i + 2 < r.positions.size(); i += 3)
+    bounds_.extend(glm::dvec3(r.positions[i], r.positions[i + 1], r.positions[i + 2]));
   positions_ = vk::makeBuffer<float>(ctx, r.positions, "positions", kAsInput);
   scalars_ = vk::Buffer(ctx, numVertices_ * sizeof(float), vk::kStorageUsage, vk::MemoryUse::Device,
                         "scalars");
@@ -32,9 +66,16 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r)
   if (shellTriangles_ > 0) {
     if (shellTriangles_ > 0xFFFFFFFFull)
       throw Error("shell of ", shellTriangles_, " triangles: use more ranks");
-    blas_ = vk::AccelerationStructure::buildTriangles(ctx, positions_, uint32_t(numVertices_),
-                                                      shellIndices_, uint32_t(shellTriangles_),
-                                                      true, "shell BLAS");
+    if (shell == ShellGeometry::Triangles) {
+      blas_ = vk::AccelerationStructure::buildTriangles(ctx, positions_, uint32_t(numVertices_),
+                                                        shellIndices_, uint32_t(shellTriangles_),
+                                                        true, "shell BLAS (triangles)");
+    } else {
+      auto boxes = shellBoxes(r);
+      vk::Buffer input = vk::makeBuffer<VkAabbPositionsKHR>(ctx, boxes, "shell boxes", kAsInput);
+      blas_ = vk::AccelerationStructure::buildBoxes(ctx, input, uint32_t(boxes.size()), true,
+                                                    "shell BLAS (boxes)");
+    }
   }
   tlas_ =
       vk::AccelerationStructure::buildInstance(ctx, blas_.valid() ? &blas_ : nullptr, "shell TLAS");

@@ -13,9 +13,17 @@
 
 namespace sm::render {
 
+// How the shell BLAS holds the shell. Boxes: one padded box per shell triangle, every candidate
+// decided by the exact crossing predicates the marcher uses (exact everywhere, the default).
+// Triangles: the device's own triangle test decides (faster where RT cores test triangles, but a
+// ray through a shell vertex or edge may be judged differently from the marcher).
+enum class ShellGeometry { Boxes, Triangles };
+
 class GpuScene {
  public:
-  GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank);
+  GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank,
+           ShellGeometry shell = ShellGeometry::Boxes);
+  ShellGeometry shellGeometry() const { return shell_; }
 
   // Scalars in this rank's vertex order (prep::gatherScalars); size must equal the vertex count.
   void setScalars(const std::vector<float>& values);
@@ -33,13 +41,17 @@ class GpuScene {
   uint64_t accelerationStructureBytes() const { return blas_.bytes() + tlas_.bytes(); }
   uint64_t deviceBytes() const;  // every buffer this scene holds
   glm::dvec3 origin() const { return origin_; }
+  // Bounds of this rank's vertices in rebased coordinates (empty for a rank with no elements).
+  const mesh::Bounds& rebasedBounds() const { return bounds_; }
 
  private:
   const vk::Context& ctx_;
+  ShellGeometry shell_;
   bool compact_;
   uint32_t typesPresent_;
   uint64_t numVertices_, shellTriangles_;
   glm::dvec3 origin_;
+  mesh::Bounds bounds_;
   vk::Buffer positions_, scalars_, shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
   vk::Buffer elements_[4], neighbors_[4];
   vk::AccelerationStructure blas_, tlas_;

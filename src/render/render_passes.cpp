@@ -30,6 +30,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
   return {{0, scene.compact() ? 1u : 0u},
           {1, scene.typesPresent()},
           {10, ctx.hasFloat64() ? 1u : 0u},
+          {11, scene.shellGeometry() == ShellGeometry::Boxes ? 1u : 0u},
           {100, compositor.modeConstant()},
           {101, compositor.encodingConstant()}};
 }

@@ -15,7 +15,7 @@ struct RenderSettings {
   double dt = 0.01;                     // sample spacing along rays, world units
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
-  uint32_t maxElementSteps = 1u << 22;  // per segment: march bound
+  uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)
 };
 
 }  // namespace sm::render

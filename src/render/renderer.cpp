@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "common/check.h"
 #include "common/error.h"
@@ -46,6 +47,14 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.scene = scene_.refs();
   p.transferFunction = transferFunction_.valid() ? transferFunction_.address() : 0;
   p.stats = stats_.address();
+  p.rays = useRays_ ? rays_.address() : 0;
+  // Rays can only start inside the volume when the eye is within this rank's bounds (padded for
+  // rounding); elsewhere the traversal skips the query that looks for such a start.
+  const mesh::Bounds& b = scene_.rebasedBounds();
+  glm::dvec3 eye = cam.eye - scene_.origin(), pad(1e-3 * b.diagonal() + 1e-30);
+  bool inBounds = !b.empty && glm::all(glm::greaterThanEqual(eye, b.lo - pad)) &&
+                  glm::all(glm::lessThanEqual(eye, b.hi + pad));
+  p.eyeMayBeInside = (useRays_ || inBounds) ? 1u : 0u;
   p.eye = toFloat(cam.eye - scene_.origin());
   p.forward = toFloat(cam.forward);
   p.right = toFloat(cam.right);
@@ -78,6 +87,24 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
 
 void Renderer::writeParams(const gpu::FrameParams& p) {
   params_.upload(&p, sizeof p);
+}
+
+FrameResult Renderer::renderRays(const RenderSettings& settings,
+                                 const std::vector<WorldRay>& rays) {
+  std::vector<gpu::RayDesc> rebased(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i)
+    rebased[i] = {glm::vec3(rays[i].origin - scene_.origin()), glm::vec3(rays[i].direction)};
+  if (!rays_.valid() || rays_.size() < rebased.size() * sizeof(gpu::RayDesc))
+    rays_ = vk::Buffer(ctx_, rebased.size() * sizeof(gpu::RayDesc), vk::kStorageUsage,
+                       vk::MemoryUse::Device, "rays");
+  rays_.upload(rebased.data(), rebased.size() * sizeof(gpu::RayDesc));
+  RenderSettings s = settings;
+  s.width = int(rebased.size());
+  s.height = 1;
+  useRays_ = true;
+  FrameResult r = render(s);
+  useRays_ = false;
+  return r;
 }
 
 FrameResult Renderer::render(const RenderSettings& s) {
@@ -173,6 +200,10 @@ std::vector<std::vector<gpu::Segment>> Renderer::lastSegments() const {
     at += counts[p];
   }
   return out;
+}
+
+std::vector<std::vector<comp::DcFragment>> Renderer::lastFragments() const {
+  return compositor_.downloadLists();
 }
 
 std::vector<uint32_t> Renderer::lastFragmentCounts() const {

@@ -13,6 +13,12 @@
 
 namespace sm::render {
 
+// A ray in world coordinates, for renderRays.
+struct WorldRay {
+  glm::dvec3 origin;
+  glm::dvec3 direction;  // unit length
+};
+
 struct FrameTimings {
   double traversalMs = 0;  // both traversal passes (two-pass) or the fused pass (fixed lists)
   double scanMs = 0;       // prefix sum over the counts, and the host round trip for the total
@@ -33,12 +39,17 @@ class Renderer {
  public:
   Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor);
   FrameResult render(const RenderSettings& settings);
+  // Renders explicit rays (world coordinates) instead of camera rays: ray i is pixel (i, 0) of a
+  // rays.size() x 1 image (the compositor must have that size). For tests aiming at vertices/edges.
+  FrameResult renderRays(const RenderSettings& settings, const std::vector<WorldRay>& rays);
   // Per-pixel counts of the last frame on this rank (statistics and heatmaps).
   std::vector<uint32_t> lastSegmentCounts() const;
   std::vector<uint32_t> lastFragmentCounts() const;
   // The segments traversal found in the last two-pass frame, per pixel (for tests that compare
   // segment lists with the CPU reference).
   std::vector<std::vector<gpu::Segment>> lastSegments() const;
+  // This rank's fragments of the last frame per pixel, in list order (decoded to floats).
+  std::vector<std::vector<comp::DcFragment>> lastFragments() const;
 
  private:
   gpu::FrameParams frameParams(const RenderSettings& s) const;
@@ -52,8 +63,9 @@ class Renderer {
   std::unique_ptr<TraversalPass> traversal_;
   std::unique_ptr<MarchPass> march_;
   std::unique_ptr<FusedPass> fused_;
-  vk::Buffer params_, stats_, transferFunction_, segments_;
+  vk::Buffer params_, stats_, transferFunction_, segments_, rays_;
   uint64_t lastSegmentTotal_ = 0;
+  bool useRays_ = false;
   vk::TimestampQueries timestamps_;
 };
 

@@ -71,6 +71,18 @@ TEST(ImageVsReference, CubeSplitsAgreeForALinearField) {
     test::expectImagesClose("cube_split_" + std::to_string(i), images[0], images[i]);
 }
 
+// The device-triangle shell (RT cores decide shell hits) gives the same images on generic views.
+TEST(ImageVsReference, DeviceTriangleShells) {
+  auto s = linearFieldSettings(0, 6);
+  for (Split split : {Split::Tets5, Split::Hex, Split::Pyramids}) {
+    auto m = ref::test::cubeMesh(split, 3);
+    auto f = ref::test::pointField(m, linear);
+    test::GpuRenderOptions o;
+    o.shell = ShellGeometry::Triangles;
+    compareWithReference("triangle_shell_" + ref::test::splitName(split), m, f, s, o);
+  }
+}
+
 // Non-affine cells (interior vertices moved) exercise the Newton inversion and warped quads.
 TEST(ImageVsReference, DistortedCells) {
   for (Split split : {Split::Hex, Split::Wedges, Split::Pyramids, Split::Tets5}) {

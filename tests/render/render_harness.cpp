@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "prep/prepare.h"
+#include "prep/vertex_order.h"
 #include "ref/reference_renderer.h"
 #include "support/test_support.h"
 #include "vk/context.h"
@@ -24,7 +25,7 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::vector<flo
   auto frame = prep::makeGlobalFrame(m.bounds());
   auto prepared = prep::prepareRank(m, frame, prep::PrepOptions{options.compact}).rank;
   vk::Context ctx;
-  render::GpuScene scene(ctx, prepared);
+  render::GpuScene scene(ctx, prepared, options.shell);
   scene.setScalars(prep::gatherScalars(prepared, values));
   comp::DeepCompositor compositor(ctx, nullptr, settings.width, settings.height, options.lists);
   render::Renderer renderer(ctx, scene, compositor);
@@ -57,8 +58,30 @@ std::string writeComparison(const std::string& name, const scene::Image& referen
   return dir;
 }
 
-scene::Image renderReference(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
+mesh::UnstructuredMesh inGlobalVertexOrder(const mesh::UnstructuredMesh& m) {
+  std::vector<uint32_t> order =
+      prep::globalVertexOrder(m.points, prep::makeGlobalFrame(m.bounds()));
+  std::vector<uint32_t> newId(order.size());
+  for (size_t i = 0; i < order.size(); ++i) newId[order[i]] = uint32_t(i);
+  mesh::UnstructuredMesh out = m;
+  for (size_t i = 0; i < order.size(); ++i) out.points[i] = m.points[order[i]];
+  for (auto& cells : out.cells)
+    for (uint32_t& v : cells) v = newId[v];
+  for (size_t f = 0; f < out.fields.size(); ++f)
+    for (size_t step = 0; step < out.fields[f].steps.size(); ++step)
+      for (size_t i = 0; i < order.size(); ++i)
+        out.fields[f].steps[step][i] = m.fields[f].steps[step][order[i]];
+  return out;
+}
+
+scene::Image renderReference(const mesh::UnstructuredMesh& input,
+                             const std::vector<float>& inputValues,
                              const render::RenderSettings& s) {
+  mesh::UnstructuredMesh mesh = inGlobalVertexOrder(input);
+  std::vector<uint32_t> order =
+      prep::globalVertexOrder(input.points, prep::makeGlobalFrame(input.bounds()));
+  std::vector<float> values(inputValues.size());
+  for (size_t i = 0; i < order.size(); ++i) values[i] = inputValues[order[i]];
   ref::ReferenceRenderer r(mesh);
   ref::RenderSettings rs;
   rs.dt = s.dt;

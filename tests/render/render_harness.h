@@ -21,6 +21,7 @@ struct GpuRender {
 
 struct GpuRenderOptions {
   bool compact = true;
+  render::ShellGeometry shell = render::ShellGeometry::Boxes;
   comp::CompositorOptions lists;
 };
 
@@ -30,6 +31,11 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::string& fie
 // Same with explicit per-point scalars.
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
                       const render::RenderSettings& settings, const GpuRenderOptions& options = {});
+
+// The mesh with its vertices renumbered in shellmarch's global vertex order (position-based, see
+// prep/vertex_order.h). Quads are split through their smallest vertex in that order, so the
+// reference must see the same numbering to triangulate warped quads as the GPU does.
+mesh::UnstructuredMesh inGlobalVertexOrder(const mesh::UnstructuredMesh& mesh);
 
 // The CPU reference's image of the same frame (Grid mode: the same samples as the GPU).
 scene::Image renderReference(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
