@@ -9,7 +9,7 @@
 // Shape functions N[i] and their derivatives dN[i] = (dN/dr, dN/ds, dN/dt) at parametric point p.
 void shapeFunctions(uint type, vec3 p, out float N[8], out vec3 dN[8]) {
   float r = p.x, s = p.y, t = p.z;
-  for (uint i = 0u; i < 8u; ++i) { N[i] = 0.0; dN[i] = vec3(0.0); }
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) { N[i] = 0.0; dN[i] = vec3(0.0); }
   if (type == SM_HEX) {
     float rm = 1.0 - r, sm = 1.0 - s, tm = 1.0 - t;
     N[0] = rm * sm * tm; N[1] = r * sm * tm; N[2] = r * s * tm; N[3] = rm * s * tm;
@@ -43,7 +43,7 @@ vec3 isoparametricPosition(uint type, vec3 P[8], vec3 p) {
   vec3 dN[8];
   shapeFunctions(type, p, N, dN);
   vec3 x = vec3(0.0);
-  for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) x += N[i] * P[i];
+  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) x += N[i] * P[i];
   return x;
 }
 
@@ -56,12 +56,12 @@ void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
   uint nv = SM_NUM_VERTS[type];
   vec3 res = isoparametricPosition(type, P, p) - x;
   float rn = dot(res, res);
-  for (int it = 0; it < 16; ++it) {
+  SM_NO_UNROLL for (int it = 0; it < 16; ++it) {
     float N[8];
     vec3 dN[8];
     shapeFunctions(type, p, N, dN);
     mat3 J = mat3(0.0);  // columns: d(position)/dr, /ds, /dt
-    for (uint i = 0u; i < nv; ++i) {
+    SM_NO_UNROLL for (uint i = 0u; i < nv; ++i) {
       J[0] += dN[i].x * P[i];
       J[1] += dN[i].y * P[i];
       J[2] += dN[i].z * P[i];
@@ -71,7 +71,7 @@ void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
     bool accepted = false;
     vec3 pn = p, rnext = res;
     float rnn = rn;
-    for (int h = 0; h < 6 && !accepted; ++h) {
+    SM_NO_UNROLL for (int h = 0; h < 6 && !accepted; ++h) {
       pn = clamp(p + delta, vec3(-1.0), vec3(2.0));
       rnext = isoparametricPosition(type, P, pn) - x;
       rnn = dot(rnext, rnext);
@@ -104,7 +104,7 @@ float interpolateIsoparametric(uint type, vec3 p, float S[8]) {
   if (type == SM_WED) q.xy = projectToTriangle(p.xy);
   shapeFunctions(type, q, N, dN);
   float s = 0.0;
-  for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) s += N[i] * S[i];
+  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) s += N[i] * S[i];
   return s;
 }
 

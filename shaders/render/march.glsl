@@ -22,28 +22,54 @@ struct Walk {
 };
 
 struct ElementGeom {
-  vec3 P[8];   // projected vertices (xy in the ray frame, z = foot distance)
-  vec3 X[8];   // positions relative to X[0]'s world position (for Newton)
-  vec3 origin; // world position of vertex 0
-  float S[8];  // vertex scalars
+  vec3 P[8];  // projected vertices (xy in the ray frame, z = foot distance)
+  vec3 W[8];  // rebased world positions (for Newton in non-tetrahedra)
+  float S[8]; // vertex scalars
 };
 
 #include "transfer.glsl"
 
+void loadVertex(RayFrame fr, SceneRefs sc, uint id, inout ElementGeom g, uint i) {
+  vec3 x = vertexPosition(sc, id);
+  g.W[i] = x;
+  g.P[i] = projectVertex(fr, x);
+  g.S[i] = vertexScalar(sc, id);
+}
+
 ElementGeom loadGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8]) {
   ElementGeom g;
-  uint nv = SM_NUM_VERTS[type];
-  g.origin = vertexPosition(sc, v[0]);
-  for (uint i = 0u; i < 8u; ++i) {
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) {
     g.P[i] = vec3(0.0);
-    g.X[i] = vec3(0.0);
+    g.W[i] = vec3(0.0);
     g.S[i] = 0.0;
   }
-  for (uint i = 0u; i < nv; ++i) {
-    vec3 x = vertexPosition(sc, v[i]);
-    g.P[i] = projectVertex(fr, x);
-    g.X[i] = x - g.origin;
-    g.S[i] = vertexScalar(sc, v[i]);
+  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) loadVertex(fr, sc, v[i], g, i);
+  return g;
+}
+
+// Geometry of the element just entered through a face of the previous one: the face's vertices
+// were already loaded and projected there (projection is deterministic per vertex, so copying is
+// exact); only the others are fetched. A tetrahedron fetches one vertex per step instead of four.
+ElementGeom carryGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8], uint prevV[8], ElementGeom prev,
+                          uint prevType) {
+  ElementGeom g;
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) {
+    g.P[i] = vec3(0.0);
+    g.W[i] = vec3(0.0);
+    g.S[i] = 0.0;
+  }
+  uint pn = SM_NUM_VERTS[prevType];
+  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
+    int j = -1;
+    SM_NO_UNROLL for (uint k = 0u; k < pn; ++k)
+      if (prevV[k] == v[i]) j = int(k);
+    if (j >= 0) {
+      g.P[i] = prev.P[j];
+      g.W[i] = prev.W[j];
+      g.S[i] = prev.S[j];
+    } else {
+      loadVertex(fr, sc, v[i], g, i);
+    }
   }
   return g;
 }
@@ -71,8 +97,35 @@ uint faceTriangles(uint type, uint v[8], uint f, out uint tri[6]) {
 // forward takes the first crossing strictly after the entry (tRef, slopeRef), backward the last
 // strictly before it. Strict progress in that order is what keeps a walk through a vertex or the
 // fold edge of a warped quad from cycling; in convex elements there is just one candidate anyway.
+// Tetrahedron entered through face 3 (decoded tets always are): its other faces share the edges of
+// the entry face, whose signs the entry already fixed, so the exit is decided by the signs of the
+// three edges to the fourth vertex alone (the paper's "at most 2 tests"). These are the very edge
+// signs the general test would compute, so the decision is the same. Returns -1 when an edge is
+// degenerate in projection and the general test must decide.
+int tetExitFace(ElementGeom g, int side) {
+  int e0 = edgeSign(g.P[0].xy, g.P[3].xy);
+  int e1 = edgeSign(g.P[1].xy, g.P[3].xy);
+  int e2 = edgeSign(g.P[2].xy, g.P[3].xy);
+  if (e0 == 0 || e1 == 0 || e2 == 0) return -1;
+  if (e1 == side && e0 == -side) return 0;  // face 0 (0, 1, 3)
+  if (e2 == side && e1 == -side) return 1;  // face 1 (1, 2, 3)
+  if (e0 == side && e2 == -side) return 2;  // face 2 (2, 0, 3)
+  return -1;
+}
+
 bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, float tRef, vec2 slopeRef,
                   out int face, out float t, out vec2 slope, out float s) {
+  if (type == SM_TET && skipFace == 3) {
+    int f = tetExitFace(g, side);
+    if (f >= 0) {
+      uint a = smFaceVert(type, uint(f), 0u), b = smFaceVert(type, uint(f), 1u), c = smFaceVert(type, uint(f), 2u);
+      vec3 w;
+      triangleCrossing(v[a], v[b], v[c], g.P[a], g.P[b], g.P[c], t, w, slope);
+      face = f;
+      s = w.x * g.S[a] + w.y * g.S[b] + w.z * g.S[c];
+      return true;
+    }
+  }
   // Best candidate ahead of the entry (nearest first), and best one not ahead (least far behind):
   // a convex element has a single exit, whatever rounding says about its order.
   bool foundAhead = false, foundOther = false;
@@ -83,14 +136,14 @@ bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, f
   t = 0.0;
   slope = vec2(0.0);
   s = 0.0;
-  for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
+  SM_NO_UNROLL for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
     // The side test excludes the triangle the ray came through; skipping the whole entry face is
     // an optimisation valid for triangles only: a warped quad can fold so that the ray leaves
     // through the other triangle of the quad it came in by.
     if (int(f) == skipFace && smFaceSize(type, f) == 3u) continue;
     uint tri[6];
     uint nt = faceTriangles(type, v, f, tri);
-    for (uint k = 0u; k < nt; ++k) {
+    SM_NO_UNROLL for (uint k = 0u; k < nt; ++k) {
       uint a = tri[3u * k], b = tri[3u * k + 1u], c = tri[3u * k + 2u];
       if (crossingSide(g.P[a].xy, g.P[b].xy, g.P[c].xy) != side) continue;
       float tc;
@@ -136,7 +189,7 @@ bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, f
 bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, vec2 slope, float s) {
   uint n = smFaceSize(w.type, f);
   uint k[4];
-  for (uint i = 0u; i < n; ++i) k[i] = w.v[smFaceVert(w.type, f, n - 1u - i)];  // reversed: its outward order
+  SM_NO_UNROLL for (uint i = 0u; i < n; ++i) k[i] = w.v[smFaceVert(w.type, f, n - 1u - i)];  // reversed: its outward order
   if (n == 3u) k[3] = 0u;
   w.type = smRefType(ref);
   w.index = smRefIndex(ref);
@@ -171,9 +224,9 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
   r.samples = 0u;
   SceneRefs sc = fp.scene;
   vec3 guess = parametricCenter(w.type);
-  for (uint step = 0u; step < fp.maxElementSteps; ++step) {
+  ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
+  SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
     r.steps += 1u;
-    ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
     int f;
     float tOut, sOut;
     vec2 slopeOut;
@@ -196,10 +249,13 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
       r.status = MARCH_OK;
       return r;
     }
+    uint prevV[8] = w.v;
+    uint prevType = w.type;
     if (!crossInto(sc, w, uint(f), ref, tOut, slopeOut, sOut)) {
       r.status = MARCH_LOST;
       return r;
     }
+    g = carryGeometry(fr, sc, w.type, w.v, prevV, g, prevType);
     // A new element: start Newton from its centre, not from the last element's coordinates.
     guess = parametricCenter(w.type);
   }
@@ -211,9 +267,9 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
 // first. Returns the walk ready for marchSegment (entry = that crossing).
 bool walkBack(RayFrame fr, FrameParams fp, inout Walk w, float tStart, inout uint steps) {
   SceneRefs sc = fp.scene;
-  for (uint step = 0u; step < fp.maxElementSteps; ++step) {
+  ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
+  SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
     steps += 1u;
-    ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
     int f;
     float tB, sB;
     vec2 slopeB;
@@ -227,7 +283,10 @@ bool walkBack(RayFrame fr, FrameParams fp, inout Walk w, float tStart, inout uin
       w.sIn = sB;
       return true;
     }
+    uint prevV[8] = w.v;
+    uint prevType = w.type;
     if (!crossInto(sc, w, uint(f), ref, tB, slopeB, sB)) return false;
+    g = carryGeometry(fr, sc, w.type, w.v, prevV, g, prevType);
   }
   return false;
 }

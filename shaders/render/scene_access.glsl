@@ -29,12 +29,12 @@ float vertexScalar(SceneRefs sc, uint v) { return SmFloats(sc.scalars).v[v]; }
 uint recordWords(uint type) { return kCompact ? SM_COMPACT_WORDS[type] : SM_PLAIN_WORDS[type]; }
 
 void loadRecord(SceneRefs sc, uint type, uint index, out uint rec[8]) {
-  for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
   uint words = recordWords(type);
   uint64_t base = sc.elements[type];
   SmUints r = SmUints(base);
   uint first = index * words;
-  for (uint i = 0u; i < words; ++i) rec[i] = r.v[first + i];
+  SM_NO_UNROLL for (uint i = 0u; i < words; ++i) rec[i] = r.v[first + i];
 }
 
 // Reconstructs element (type, index) entered through face k[0..n-1] (the element's own outward

@@ -39,6 +39,10 @@ void addSample(FrameParams fp, float s, inout vec4 acc) {
 void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, float tIn, float tOut, float sIn,
                       float sOut, float a, float b, inout vec3 guess, inout vec4 acc, inout uint samples) {
   float dt = fp.dt;
+  // Newton works relative to the element's first vertex: small numbers, better conditioned.
+  vec3 X[8];
+  if (type != SM_TET)
+    for (uint i = 0u; i < 8u; ++i) X[i] = g.W[i] - g.W[0];
   for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
     float s;
@@ -46,8 +50,8 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, flo
       float len = tOut - tIn;
       s = len > 0.0 ? mix(sIn, sOut, clamp((t - tIn) / len, 0.0, 1.0)) : sIn;
     } else {
-      vec3 x = fr.org + t * fr.dir - g.origin;
-      invertIsoparametric(type, g.X, x, guess);
+      vec3 x = fr.org + t * fr.dir - g.W[0];
+      invertIsoparametric(type, X, x, guess);
       s = interpolateIsoparametric(type, guess, g.S);
     }
     addSample(fp, s, acc);

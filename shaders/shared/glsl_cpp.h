@@ -16,6 +16,7 @@
 #define SM_INOUT(T, name) T& name
 #define SM_OUT(T, name) T& name
 #define SM_U(x) x##u
+#define SM_NO_UNROLL
 #else
 #define SM_BEGIN_NAMESPACE
 #define SM_END_NAMESPACE
@@ -26,6 +27,10 @@
 #define SM_INOUT(T, name) inout T name
 #define SM_OUT(T, name) out T name
 #define SM_U(x) x##u
+// Loops over faces and vertices stay loops: unrolled for every element type they multiply code
+// size, and with it Mesa's shader compile time (seconds per pipeline on lavapipe).
+#extension GL_EXT_control_flow_attributes : require
+#define SM_NO_UNROLL [[dont_unroll]]
 #endif
 
 #ifdef __cplusplus

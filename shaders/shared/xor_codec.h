@@ -21,7 +21,7 @@
 SM_BEGIN_NAMESPACE
 
 SM_FN int smFindIdx(SM_IN_ARR(uint, k, 4), uint n, uint x) {
-  for (uint i = 0u; i < n; ++i) {
+  SM_NO_UNROLL for (uint i = 0u; i < n; ++i) {
     if (k[i] == x) return int(i);
   }
   return -1;
@@ -30,14 +30,14 @@ SM_FN int smFindIdx(SM_IN_ARR(uint, k, 4), uint n, uint x) {
 // Connectivity slot of the tet face opposite vertex x: how many of the tet's vertices are smaller.
 SM_FN uint smTetSlot(SM_IN_ARR(uint, v, 8), uint x) {
   uint r = 0u;
-  for (uint i = 0u; i < 4u; ++i) {
+  SM_NO_UNROLL for (uint i = 0u; i < 4u; ++i) {
     if (v[i] < x) r += 1u;
   }
   return r;
 }
 
 SM_FN void smXorEncode(uint type, SM_IN_ARR(uint, v, 8), SM_OUT_ARR(uint, rec, 8)) {
-  for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
   if (type == SM_TET) {
     rec[0] = v[0] ^ v[1] ^ v[2] ^ v[3];
   } else if (type == SM_PYR) {
@@ -45,18 +45,18 @@ SM_FN void smXorEncode(uint type, SM_IN_ARR(uint, v, 8), SM_OUT_ARR(uint, rec, 8
   } else if (type == SM_WED) {
     rec[0] = v[2] ^ v[3]; rec[1] = v[1] ^ v[5]; rec[2] = v[0]; rec[3] = v[4];
   } else {
-    for (uint i = 0u; i < 8u; ++i) rec[i] = v[i];
+    SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) rec[i] = v[i];
   }
 }
 
 // Face of `type` that holds all n known vertices (n = 3 may be three vertices of a quad); -1 if
 // none. Two faces of a valid element share at most an edge, so the answer is unique.
 SM_FN int smMatchFace(uint type, SM_IN_ARR(uint, v, 8), SM_IN_ARR(uint, k, 4), uint n) {
-  for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
+  SM_NO_UNROLL for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
     uint fs = smFaceSize(type, f);
     if (fs < n) continue;
     uint found = 0u;
-    for (uint j = 0u; j < fs; ++j) {
+    SM_NO_UNROLL for (uint j = 0u; j < fs; ++j) {
       if (smFindIdx(k, n, v[smFaceVert(type, f, j)]) >= 0) found += 1u;
     }
     if (found == n) return int(f);
@@ -66,7 +66,7 @@ SM_FN int smMatchFace(uint type, SM_IN_ARR(uint, v, 8), SM_IN_ARR(uint, k, 4), u
 
 SM_FN int smDecodeTet(uint fourth, SM_IN_ARR(uint, k, 4), SM_OUT_ARR(uint, v, 8)) {
   v[0] = k[0]; v[1] = k[2]; v[2] = k[1]; v[3] = fourth;
-  for (uint i = 4u; i < 8u; ++i) v[i] = 0u;
+  SM_NO_UNROLL for (uint i = 4u; i < 8u; ++i) v[i] = 0u;
   return 3;
 }
 
@@ -87,7 +87,7 @@ SM_FN int smXorDecodePyr(SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4), uint n,
   // Base quad, outward cycle (v0, v3, v2, v1): v3 is followed by v2 and v1 by v0. Any three
   // consecutive vertices of the cycle contain one of those two pairs.
   uint m = (n == 4u) ? 4u : 2u;  // successor pairs available (cyclic for 4, a path for 3)
-  for (uint i = 0u; i < m; ++i) {
+  SM_NO_UNROLL for (uint i = 0u; i < m; ++i) {
     uint a = k[i], b = k[(i + 1u) % n];
     if (a == v[3]) { v[2] = b; v[0] = dx ^ b; return 0; }
     if (a == v[1]) { v[0] = b; v[2] = dx ^ b; return 0; }
@@ -143,7 +143,7 @@ SM_FN int smXorDecode(uint type, SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4),
   }
   if (type == SM_PYR) return smXorDecodePyr(rec, k, n, v);
   if (type == SM_WED) return smXorDecodeWed(rec, k, n, v);
-  for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
   return smMatchFace(type, v, k, n);
 }
 
@@ -153,13 +153,13 @@ SM_FN int smPlainDecode(uint type, SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4
     if (n != 3u) return -1;
     uint fourth = 0u;
     uint missing = 0u;
-    for (uint i = 0u; i < 4u; ++i) {
+    SM_NO_UNROLL for (uint i = 0u; i < 4u; ++i) {
       if (smFindIdx(k, 3u, rec[i]) < 0) { fourth = rec[i]; missing += 1u; }
     }
     if (missing != 1u) return -1;
     return smDecodeTet(fourth, k, v);
   }
-  for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
+  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
   return smMatchFace(type, v, k, n);
 }
 
