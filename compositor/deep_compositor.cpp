@@ -13,10 +13,6 @@
 
 namespace sm::comp {
 namespace {
-struct LocalPush {
-  uint64_t fragments, counts, offsets, image;
-  uint32_t pixels, fixedK;
-};
 static_assert(std::is_trivially_copyable_v<CompositeStats>);
 }  // namespace
 
@@ -49,7 +45,7 @@ DeepCompositor::DeepCompositor(const vk::Context& ctx, Communicator* comm, int w
   if (options_.mode != ListMode::TwoPass) growFragments(pixels * options_.fixedK);
   const std::vector<vk::SpecConstant> spec = {{100, modeConstant()}, {101, encodingConstant()}};
   compositeLocal_ = vk::ComputePipeline(
-      ctx, {"composite_local", spv::composite_local(), spec, sizeof(LocalPush), false});
+      ctx, {"composite_local", spv::composite_local(), spec, sizeof(DcLocalPush), false});
   if (ranks() > 1)
     exchange_ = std::make_unique<DeepExchange>(ctx, *comm, uint32_t(pixels), options_, scan_,
                                                listStats_, allocations_);
@@ -150,12 +146,12 @@ ListsView DeepCompositor::flatten(const ListsView& lists) {
 
 void DeepCompositor::compositeLocal(const ListsView& lists, std::vector<glm::vec4>& image) {
   const uint32_t pixels = uint32_t(width_) * uint32_t(height_);
-  LocalPush push{lists.fragments->address(),
-                 lists.counts->address(),
-                 lists.offsets ? lists.offsets->address() : 0,
-                 image_.address(),
-                 pixels,
-                 lists.fixedK};
+  DcLocalPush push{lists.fragments->address(),
+                   lists.counts->address(),
+                   lists.offsets ? lists.offsets->address() : 0,
+                   image_.address(),
+                   pixels,
+                   lists.fixedK};
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     previousWorkBarrier(cmd);
     listStats_.record(cmd, lists.counts->address(), pixels);

@@ -22,6 +22,7 @@ struct ReplayOptions {
   std::vector<int> ranks = {72, 552};
   int width = 1024, height = 1024;
   uint32_t depthBlocks = 0;  // 0: scaled with the rank count
+  uint32_t counterBits = 0;  // 0: from the longest list, as the compositor chooses
   std::string dump;          // replay these counts instead of the synthetic scene
   std::string json;
 };

@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   replayCmd->add_option("--width", replay.width)->check(CLI::PositiveNumber);
   replayCmd->add_option("--height", replay.height)->check(CLI::PositiveNumber);
   replayCmd->add_option("--depth-blocks", replay.depthBlocks, "0: scaled with the rank count");
+  replayCmd->add_option("--counter-bits", replay.counterBits, "force 2, 4, 8 or 32 (0: chosen)");
   replayCmd->add_option("--dump", replay.dump, "count dump (format: docs/COMPOSITOR.md)");
   replayCmd->add_option("--json", replay.json);
   CLI11_PARSE(app, argc, argv);

@@ -42,20 +42,20 @@ nlohmann::json row(const ReplayResult& r, int width, int height, const std::stri
 }
 
 void printTable(const nlohmann::json& rows) {
-  std::printf("%6s %9s %4s %11s | %-22s | %-22s | %-22s | %7s %7s\n", "ranks", "image", "bits",
-              "fragments", "count B sent/rank", "float frag B sent/rank", "rgba8 frag B sent/rank",
-              "render", "comp");
-  std::printf("%6s %9s %4s %11s | %-22s | %-22s | %-22s | %7s %7s\n", "", "", "", "",
-              "  min    mean     max", "  min    mean     max", "  min    mean     max", "imbal",
-              "imbal");
+  std::printf("%6s %9s %4s %10s | %-29s | %-29s | %-29s | %6s %6s\n", "ranks", "image", "bits",
+              "fragments", "count kB sent per rank", "float fragment kB sent/rank",
+              "rgba8 fragment kB sent/rank", "render", "comp");
+  std::printf("%6s %9s %4s %10s |", "", "", "", "");
+  for (int i = 0; i < 3; ++i) std::printf(" %9s %9s %9s |", "min", "mean", "max");
+  std::printf(" %6s %6s\n", "imbal", "imbal");
   auto k = [](const nlohmann::json& s, const char* f) { return double(s[f]) / 1e3; };
   for (const auto& r : rows) {
     std::string image = std::to_string(int(r["width"])) + "x" + std::to_string(int(r["height"]));
-    std::printf("%6d %9s %4d %11.0f |", int(r["ranks"]), image.c_str(), int(r["counterBits"]),
+    std::printf("%6d %9s %4d %10.0f |", int(r["ranks"]), image.c_str(), int(r["counterBits"]),
                 double(r["fragments"]));
     for (const char* f : {"countBytesSent", "fragmentBytesSentFloat", "fragmentBytesSentRgba8"})
-      std::printf(" %6.1fk %6.1fk %6.1fk |", k(r[f], "min"), k(r[f], "mean"), k(r[f], "max"));
-    std::printf(" %7.2f %7.2f\n", double(r["renderImbalance"]), double(r["compositeImbalance"]));
+      std::printf(" %9.1f %9.1f %9.1f |", k(r[f], "min"), k(r[f], "mean"), k(r[f], "max"));
+    std::printf(" %6.2f %6.2f\n", double(r["renderImbalance"]), double(r["compositeImbalance"]));
   }
 }
 
@@ -66,14 +66,14 @@ int replayBenchmark(const ReplayOptions& o) {
   if (!o.dump.empty()) {
     CountDumpReader reader(o.dump);
     ReplayResult r = replayExchange(
-        uint64_t(reader.width()) * reader.height(), int(reader.ranks()), Encoding::Float, 0,
-        [&](int rank, std::vector<uint32_t>& c) { reader.read(uint32_t(rank), c); });
+        uint64_t(reader.width()) * reader.height(), int(reader.ranks()), Encoding::Float,
+        o.counterBits, [&](int rank, std::vector<uint32_t>& c) { reader.read(uint32_t(rank), c); });
     rows.push_back(row(r, int(reader.width()), int(reader.height()), o.dump));
   } else {
     for (int ranks : o.ranks) {
       SyntheticScene scene(o.width, o.height, ranks, o.depthBlocks);
       ReplayResult r =
-          replayExchange(uint64_t(o.width) * o.height, ranks, Encoding::Float, 0,
+          replayExchange(uint64_t(o.width) * o.height, ranks, Encoding::Float, o.counterBits,
                          [&](int rank, std::vector<uint32_t>& c) { scene.counts(rank, c); });
       rows.push_back(
           row(r, o.width, o.height, "synthetic, " + std::to_string(scene.blocks()) + "^3 blocks"));

@@ -10,6 +10,17 @@
 namespace sm::comp {
 #endif
 
+// composite_local.comp (one rank): lists start at offsets[p] (two-pass) or p * fixedK (offsets ==
+// 0); image holds one premultiplied vec4 per pixel.
+struct DcLocalPush {
+  uint64_t fragments;
+  uint64_t counts;
+  uint64_t offsets;
+  uint64_t image;
+  uint pixels;
+  uint fixedK;
+};
+
 // list_stats.comp: result[0] = longest list, [1] = non-empty pixels, [2] = fragments.
 struct DcStatsPush {
   uint64_t counts;
@@ -79,6 +90,7 @@ struct DcWritePush {
 };
 
 #ifdef __cplusplus
+static_assert(sizeof(DcLocalPush) == 40);
 static_assert(sizeof(DcWritePush) == 72);
 static_assert(sizeof(DcStatsPush) == 24);
 static_assert(sizeof(DcCompactPush) == 56);

@@ -64,6 +64,19 @@ TEST_F(CompositorMpi, TransfersChunkedBelowIntLimitsGiveTheSameImages) {
   }
 }
 
+// MPI_ERRORS_RETURN: an invalid call fails with MPI's own error string, on every rank alike.
+TEST_F(CompositorMpi, MpiErrorsBecomeExceptionsWithMpiErrorString) {
+  uint64_t v = 0;
+  try {
+    mpiWorld().broadcast(&v, sizeof v, mpiWorld().size());  // no such root
+    ADD_FAILURE() << "expected MpiError";
+  } catch (const MpiError& e) {
+    EXPECT_NE(std::string(e.what()).find("MPI_Bcast"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("MPI_ERR_ROOT"), std::string::npos) << e.what();
+  }
+  mpiWorld().barrier();  // the communicator still works
+}
+
 // Run only by mpi_abort_check.sh: the last rank fails while the others wait for it in a frame;
 // every process must end promptly with the message.
 TEST_F(CompositorMpi, DISABLED_FailureOnOneRankEndsAllRanks) {
