@@ -57,7 +57,9 @@ DcFragment dcLoad(uint64_t fragments, uint slot) {
   return dcUnpack(DcPackedFragments(fragments).v[slot]);
 }
 
-// Merges the lowest-opacity fragment of the full list plus `f` into its front neighbour.
+// Merges the lowest-opacity fragment of the full list plus `f` (the K + 1 sequence [stored..., f])
+// into its front neighbour, or into its back neighbour when it is the frontmost, keeping the front
+// one's depth; then appends f unless f itself was merged.
 void dcMergeInto(inout DcListWriter w, DcFragment f) {
   uint n = w.capacity;  // the list is full: n stored + f
   uint lowest = n;      // index n stands for f
@@ -66,17 +68,11 @@ void dcMergeInto(inout DcListWriter w, DcFragment f) {
     float a = dcLoad(w.fragments, w.base + i).color.a;
     if (a < lowestA) { lowestA = a; lowest = i; }
   }
-  if (lowest == n) {  // f itself: composite it behind the last stored fragment
-    DcFragment last = dcLoad(w.fragments, w.base + n - 1u);
-    dcStore(w.fragments, w.base + n - 1u, dcOver(last, f));
-    return;
-  }
-  // Composite `lowest` onto its front neighbour (or its back neighbour when it is the front one),
-  // close the gap, and append f.
   uint front = lowest == 0u ? 0u : lowest - 1u;
-  uint back = front + 1u;
-  DcFragment merged = dcOver(dcLoad(w.fragments, w.base + front), dcLoad(w.fragments, w.base + back));
-  dcStore(w.fragments, w.base + front, merged);
+  uint back = front + 1u;  // <= n; n is f (K = 1 or f lowest)
+  DcFragment b = back == n ? f : dcLoad(w.fragments, w.base + back);
+  dcStore(w.fragments, w.base + front, dcOver(dcLoad(w.fragments, w.base + front), b));
+  if (back == n) return;
   for (uint i = back; i + 1u < n; ++i) dcStore(w.fragments, w.base + i, dcLoad(w.fragments, w.base + i + 1u));
   dcStore(w.fragments, w.base + n - 1u, f);
 }

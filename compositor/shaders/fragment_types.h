@@ -20,8 +20,8 @@ DC_CONST uint DC_ENCODING_FLOAT = 0u;  // 20 bytes: premultiplied rgba + depth
 DC_CONST uint DC_ENCODING_RGBA8 = 1u;  // 8 bytes: rgba8 (premultiplied) + depth
 
 struct DcFragment {
-  vec4 color;  // premultiplied rgb, opacity
-  float depth; // entry distance along the ray
+  vec4 color;   // premultiplied rgb, opacity
+  float depth;  // entry distance along the ray
 };
 
 struct DcPackedFragment {

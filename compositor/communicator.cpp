@@ -1,0 +1,15 @@
+#include "compositor/communicator.h"
+
+namespace sm::comp {
+
+void runOrAbort(Communicator& comm, const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const CommAborted&) {
+    throw;  // another rank failed first and has already ended the group
+  } catch (const std::exception& e) {
+    comm.abort(e.what());
+  }
+}
+
+}  // namespace sm::comp

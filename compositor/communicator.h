@@ -1,0 +1,59 @@
+// The compositor's only view of its peers. The core is MPI-free: LocalCommunicator simulates ranks
+// as threads of one process (tests), MpiCommunicator (target shellmarch_compositor_mpi) wraps MPI.
+//
+// Every size and offset is a 64-bit byte count: implementations that talk to an API with `int`
+// counts (MPI) split transfers so that no count overflows. All calls except rank() and size() are
+// collective or matched, and throw CommError on failure. abort() ends every rank with a message:
+// an error on one rank must never leave the others waiting in a collective.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace sm::comp {
+
+class CommError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Thrown on the ranks that did not fail when another rank aborted (in-process ranks only: MPI
+// ends the processes instead).
+class CommAborted : public CommError {
+ public:
+  using CommError::CommError;
+};
+
+class Communicator {
+ public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+
+  virtual void barrier() = 0;
+  virtual uint64_t allreduceMax(uint64_t value) = 0;
+  virtual uint64_t allreduceSum(uint64_t value) = 0;
+  // Rank r sends sendBytes[d] bytes at send + sendOffsets[d] to every rank d and receives
+  // recvBytes[s] bytes from rank s at recv + recvOffsets[s]. All spans have size() entries.
+  virtual void alltoallv(const void* send, std::span<const uint64_t> sendBytes,
+                         std::span<const uint64_t> sendOffsets, void* recv,
+                         std::span<const uint64_t> recvBytes,
+                         std::span<const uint64_t> recvOffsets) = 0;
+  // Every rank sends `bytes` at `send` to `root`, which receives rank s's part at
+  // recv + recvOffsets[s] (recvBytes[s] must equal what s sends). recv* matter on root only.
+  virtual void gatherv(const void* send, uint64_t bytes, void* recv,
+                       std::span<const uint64_t> recvBytes, std::span<const uint64_t> recvOffsets,
+                       int root) = 0;
+  virtual void broadcast(void* data, uint64_t bytes, int root) = 0;
+  // Ends all ranks with `message` (printed with this rank's number). Does not return.
+  [[noreturn]] virtual void abort(const std::string& message) = 0;
+};
+
+// Runs fn; if it throws, aborts every rank with the error's message instead of unwinding into a
+// state where the other ranks wait forever.
+void runOrAbort(Communicator& comm, const std::function<void()>& fn);
+
+}  // namespace sm::comp

@@ -1,0 +1,80 @@
+#include "compositor/count_dump.h"
+
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+
+namespace sm::comp {
+namespace {
+
+constexpr char kMagic[8] = {'S', 'M', 'F', 'C', 'N', 'T', '0', '1'};
+constexpr uint64_t kHeaderBytes = 8 + 4 * 4;
+static_assert(std::endian::native == std::endian::little, "count dumps are little-endian");
+
+std::runtime_error dumpError(const std::string& path, const std::string& what) {
+  return std::runtime_error("fragment count dump " + path + ": " + what);
+}
+
+}  // namespace
+
+CountDumpWriter::CountDumpWriter(const std::string& path, uint32_t width, uint32_t height,
+                                 uint32_t ranks)
+    : path_(path), out_(path, std::ios::binary), pixels_(uint64_t(width) * height), ranks_(ranks) {
+  if (!out_) throw dumpError(path, "cannot create the file");
+  if (width == 0 || height == 0 || ranks == 0) throw dumpError(path, "empty image or no ranks");
+  const uint32_t header[4] = {width, height, ranks, 0};
+  out_.write(kMagic, sizeof kMagic);
+  out_.write(reinterpret_cast<const char*>(header), sizeof header);
+}
+
+void CountDumpWriter::append(std::span<const uint32_t> counts) {
+  if (written_ == ranks_) throw dumpError(path_, "more ranks than the header says");
+  if (counts.size() != pixels_)
+    throw dumpError(path_, "rank " + std::to_string(written_) + " has " +
+                               std::to_string(counts.size()) + " counts for " +
+                               std::to_string(pixels_) + " pixels");
+  out_.write(reinterpret_cast<const char*>(counts.data()), std::streamsize(counts.size_bytes()));
+  if (!out_) throw dumpError(path_, "write failed");
+  ++written_;
+}
+
+void CountDumpWriter::close() {
+  if (written_ != ranks_)
+    throw dumpError(path_,
+                    std::to_string(written_) + " of " + std::to_string(ranks_) + " ranks written");
+  out_.close();
+  if (!out_) throw dumpError(path_, "write failed");
+}
+
+CountDumpReader::CountDumpReader(const std::string& path)
+    : path_(path), in_(path, std::ios::binary) {
+  if (!in_) throw dumpError(path, "cannot open the file");
+  char magic[8];
+  uint32_t header[4];
+  in_.read(magic, sizeof magic);
+  in_.read(reinterpret_cast<char*>(header), sizeof header);
+  if (!in_ || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    throw dumpError(path, "not a fragment count dump (magic SMFCNT01 expected)");
+  width_ = header[0];
+  height_ = header[1];
+  ranks_ = header[2];
+  if (width_ == 0 || height_ == 0 || ranks_ == 0) throw dumpError(path, "empty image or no ranks");
+  in_.seekg(0, std::ios::end);
+  const uint64_t want = kHeaderBytes + uint64_t(width_) * height_ * ranks_ * 4;
+  if (uint64_t(in_.tellg()) != want)
+    throw dumpError(path, "size " + std::to_string(uint64_t(in_.tellg())) + " bytes, header says " +
+                              std::to_string(want));
+}
+
+void CountDumpReader::read(uint32_t rank, std::vector<uint32_t>& counts) {
+  if (rank >= ranks_)
+    throw dumpError(path_, "rank " + std::to_string(rank) + " of " + std::to_string(ranks_));
+  const uint64_t pixels = uint64_t(width_) * height_;
+  counts.resize(pixels);
+  in_.clear();
+  in_.seekg(std::streamoff(kHeaderBytes + uint64_t(rank) * pixels * 4));
+  in_.read(reinterpret_cast<char*>(counts.data()), std::streamsize(pixels * 4));
+  if (!in_) throw dumpError(path_, "read of rank " + std::to_string(rank) + " failed");
+}
+
+}  // namespace sm::comp

@@ -1,0 +1,81 @@
+// Deep compositing over several ranks: the paper's five steps.
+//   1) list statistics, prefix sum over this rank's counts, compaction of its fragments into one
+//      pixel-ordered send buffer (each destination's share contiguous);
+//   2) counts exchanged with alltoallv, packed at 2, 4, 8 or 32 bits from the longest list of any
+//      rank (encode/decode on the device);
+//   3) prefix sum over the received counts, second alltoallv moving the fragments;
+//   4) k-way merge by depth of each owned pixel's R lists (composite_deep.comp);
+//   5) owned pixels gathered on rank 0.
+// Transfers are host-staged: device buffers are copied to Readback buffers that the communicator
+// reads, and from Upload buffers it wrote. Every buffer grows and never shrinks.
+#pragma once
+
+#include <chrono>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "compositor/communicator.h"
+#include "compositor/exchange_plan.h"
+#include "compositor/list_statistics.h"
+#include "compositor/prefix_sum.h"
+#include "vk/buffer.h"
+#include "vk/pipeline.h"
+
+namespace sm::comp {
+
+struct CompositeStats;
+struct CompositorOptions;
+
+// Fragment lists on this rank as the renderer left them.
+struct ListsView {
+  const vk::Buffer* fragments = nullptr;
+  const vk::Buffer* counts = nullptr;
+  const vk::Buffer* offsets = nullptr;  // two-pass list starts; nullptr: fixed K per pixel
+  uint32_t fixedK = 0;
+};
+
+class DeepExchange {
+ public:
+  DeepExchange(const vk::Context& ctx, Communicator& comm, uint32_t pixels,
+               const CompositorOptions& options, PrefixSum& scan, ListStatistics& listStats,
+               uint64_t& allocations);
+  // Composites every rank's lists; fills `image` on rank 0 (left untouched elsewhere).
+  void run(const ListsView& lists, std::vector<glm::vec4>& image, CompositeStats& stats);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void prepare(const ListsView& lists, CompositeStats& stats);
+  void compactAndEncode(const ListsView& lists);
+  void exchangeCounts(CompositeStats& stats);
+  void exchangeFragments(CompositeStats& stats);
+  void compositeOwned();
+  void gather(std::vector<glm::vec4>& image);
+  void setCounterBits(uint32_t bits);
+  void grow(vk::Buffer& b, uint64_t bytes, vk::MemoryUse use, const char* name);
+
+  const vk::Context& ctx_;
+  Communicator& comm_;
+  const uint32_t pixels_;
+  const PixelRanges ranges_;
+  const int rank_, ranks_;
+  const uint32_t owned_;  // pixels this rank composites
+  const uint32_t fragmentBytes_;
+  const uint32_t forcedBits_;
+  PrefixSum& scan_;
+  ListStatistics& listStats_;
+  uint64_t& allocations_;
+  vk::ComputePipeline compact_, encode_, decode_, composite_;
+  CountExchange counts_;                             // plan for the current counter width
+  std::vector<uint64_t> sendIndices_, recvIndices_;  // scan entries where each rank's share starts
+  std::vector<uint64_t> sendBegin_, recvBegin_;
+  uint64_t sendTotal_ = 0, recvTotal_ = 0;
+  // Step 1-2 (sizes fixed by the image and rank count)
+  vk::Buffer sendOffsets_, sendBoundaries_, sendWords_, segments_, sendCountStage_;
+  vk::Buffer recvCountStage_, recvWords_, recvCounts_, recvOffsets_, recvBoundaries_;
+  vk::Buffer ownedImage_;
+  // Step 3 (grow with the fragment totals)
+  vk::Buffer sendFragments_, sendFragmentStage_, recvFragmentStage_, recvFragments_;
+};
+
+}  // namespace sm::comp

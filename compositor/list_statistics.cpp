@@ -1,0 +1,28 @@
+#include "compositor/list_statistics.h"
+
+#include "compositor/device_util.h"
+#include "compositor_shaders.h"
+#include "exchange_types.h"
+
+namespace sm::comp {
+
+ListStatistics::ListStatistics(const vk::Context& ctx)
+    : pipeline_(ctx, {"list_stats", spv::list_stats(), {}, sizeof(DcStatsPush), false}),
+      result_(ctx, 3 * sizeof(uint32_t), vk::kStorageUsage, vk::MemoryUse::Readback,
+              "list statistics") {}
+
+void ListStatistics::record(VkCommandBuffer cmd, VkDeviceAddress counts, uint32_t pixels) const {
+  vkCmdFillBuffer(cmd, result_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vk::transferToComputeBarrier(cmd);
+  pipeline_.dispatch(cmd, vk::groupsFor(pixels, 256), 1, 1,
+                     DcStatsPush{counts, result_.address(), pixels});
+  hostReadBarrier(cmd);
+}
+
+ListTotals ListStatistics::read() const {
+  uint32_t r[3];
+  result_.download(r, sizeof r);
+  return {r[0], r[1], r[2]};
+}
+
+}  // namespace sm::comp
