@@ -1,0 +1,82 @@
+#include "io/file_bytes.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "common/error.h"
+
+namespace sm::io {
+namespace {
+
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+FileBytes FileBytes::open(const std::string& path) {
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (f.fd < 0) throw FileError(path, "cannot open: ", std::strerror(errno));
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) throw FileError(path, "cannot stat: ", std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw FileError(path, "not a regular file");
+  FileBytes b;
+  if (st.st_size == 0) return b;
+  // Private and writable: in-place parsing dirties only the pages it writes, never the file.
+  // MAP_POPULATE maps the whole file up front, which is much cheaper than one fault per page.
+  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ | PROT_WRITE,
+                   MAP_PRIVATE | MAP_POPULATE, f.fd, 0);
+  if (p == MAP_FAILED) throw FileError(path, "cannot map into memory: ", std::strerror(errno));
+  b.data_ = static_cast<uint8_t*>(p);
+  b.size_ = static_cast<size_t>(st.st_size);
+  b.mapped_ = true;
+  return b;
+}
+
+FileBytes FileBytes::copyOf(std::span<const uint8_t> bytes) {
+  FileBytes b;
+  if (bytes.empty()) return b;
+  b.owned_.reset(new uint8_t[bytes.size()]);
+  std::memcpy(b.owned_.get(), bytes.data(), bytes.size());
+  b.data_ = b.owned_.get();
+  b.size_ = bytes.size();
+  return b;
+}
+
+FileBytes::FileBytes(FileBytes&& other) noexcept {
+  *this = std::move(other);
+}
+
+FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
+  if (this != &other) {
+    release();
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, false);
+    owned_ = std::move(other.owned_);
+  }
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+  release();
+}
+
+void FileBytes::release() {
+  if (mapped_ && data_) ::munmap(data_, size_);
+  owned_.reset();
+  data_ = nullptr;
+  size_ = 0;
+  mapped_ = false;
+}
+
+}  // namespace sm::io
