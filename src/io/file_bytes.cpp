@@ -31,10 +31,10 @@ FileBytes FileBytes::open(const std::string& path) {
   if (!S_ISREG(st.st_mode)) throw FileError(path, "not a regular file");
   FileBytes b;
   if (st.st_size == 0) return b;
-  // Private and writable: in-place parsing dirties only the pages it writes, never the file.
-  // MAP_POPULATE maps the whole file up front, which is much cheaper than one fault per page.
-  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ | PROT_WRITE,
-                   MAP_PRIVATE | MAP_POPULATE, f.fd, 0);
+  // Read-only, so that MAP_POPULATE maps the page cache as it is (a writable mapping would be
+  // populated by copying every page). Populating up front is much cheaper than a fault per page.
+  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE,
+                   f.fd, 0);
   if (p == MAP_FAILED) throw FileError(path, "cannot map into memory: ", std::strerror(errno));
   b.data_ = static_cast<uint8_t*>(p);
   b.size_ = static_cast<size_t>(st.st_size);
@@ -49,7 +49,18 @@ FileBytes FileBytes::copyOf(std::span<const uint8_t> bytes) {
   std::memcpy(b.owned_.get(), bytes.data(), bytes.size());
   b.data_ = b.owned_.get();
   b.size_ = bytes.size();
+  b.writable_ = true;
   return b;
+}
+
+uint8_t* FileBytes::writableData() {
+  if (!writable_ && data_) {
+    // Private mapping: writes go to copies of the pages written, never to the file.
+    if (::mprotect(data_, size_, PROT_READ | PROT_WRITE) != 0)
+      throw Error("cannot make a mapped file writable: ", std::strerror(errno));
+    writable_ = true;
+  }
+  return data_;
 }
 
 FileBytes::FileBytes(FileBytes&& other) noexcept {
@@ -62,6 +73,7 @@ FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
     data_ = std::exchange(other.data_, nullptr);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, false);
+    writable_ = std::exchange(other.writable_, false);
     owned_ = std::move(other.owned_);
   }
   return *this;
@@ -77,6 +89,7 @@ void FileBytes::release() {
   data_ = nullptr;
   size_ = 0;
   mapped_ = false;
+  writable_ = false;
 }
 
 }  // namespace sm::io

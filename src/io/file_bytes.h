@@ -1,6 +1,7 @@
-// The bytes of one input file, in memory. Files are memory-mapped copy-on-write, so that parsers
-// may work in place (pugixml writes terminators into its buffer) without a copy and without
-// touching the file; in-memory inputs (fuzzers, tests) are copied into an owned buffer.
+// The bytes of one input file, in memory. Files are memory-mapped read-only (binary data is used
+// in place, no copy); a parser that must write into its buffer (pugixml's in-place parsing) asks
+// for writableData(), which turns the mapping copy-on-write, so only the pages it writes are
+// copied and the file is never touched. In-memory inputs (fuzzers, tests) are copied.
 #pragma once
 
 #include <cstdint>
@@ -23,17 +24,18 @@ class FileBytes {
   FileBytes& operator=(const FileBytes&) = delete;
   ~FileBytes();
 
-  uint8_t* data() { return data_; }
   const uint8_t* data() const { return data_; }
   size_t size() const { return size_; }
-  std::span<uint8_t> span() { return {data_, size_}; }
   std::span<const uint8_t> span() const { return {data_, size_}; }
+  // The same bytes, writable (copy-on-write for mapped files).
+  uint8_t* writableData();
 
  private:
   void release();
   uint8_t* data_ = nullptr;
   size_t size_ = 0;
   bool mapped_ = false;
+  bool writable_ = false;
   std::unique_ptr<uint8_t[]> owned_;
 };
 

@@ -30,6 +30,8 @@ struct ReadOptions {
   std::string clusterArray;
   // .pvtu only: read just these pieces (cluster ids stay the global piece numbers). Empty: all.
   std::vector<int> pieces;
+  // Threads for decompression and conversions (0: all cores; 1 for per-core measurements).
+  unsigned threads = 0;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});
@@ -49,6 +51,7 @@ int countPieces(const std::string& path);
 
 struct WriteOptions {
   bool compress = true;  // zlib-compressed appended raw data
+  unsigned threads = 0;  // threads compressing (0: all cores)
 };
 
 // Writes a .pvtu and one .vtu per cluster beside it (PATH_STEM/PATH_STEM_<k>.vtu). Fields with

@@ -1,7 +1,10 @@
 #include "io/numeric_array.h"
 
+#include <sys/mman.h>
+
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "common/error.h"
 #include "common/parallel.h"
@@ -10,8 +13,30 @@ namespace sm::io {
 namespace {
 
 constexpr int64_t kParallelMin = 1 << 16;  // below this, threads cost more than they save
+constexpr size_t kHugePage = size_t(2) << 20;
+constexpr size_t kHugeMin = size_t(8) << 20;
 
 }  // namespace
+
+void ByteBufferFree::operator()(uint8_t* p) const {
+  if (huge)
+    ::operator delete[](p, std::align_val_t(kHugePage));
+  else
+    delete[] p;
+}
+
+ByteBuffer ByteBuffer::allocate(size_t n) {
+  ByteBuffer b;
+  b.size = n;
+  if (n < kHugeMin) {
+    b.bytes = std::unique_ptr<uint8_t, ByteBufferFree>(new uint8_t[n], ByteBufferFree{false});
+    return b;
+  }
+  auto* p = static_cast<uint8_t*>(::operator new[](n, std::align_val_t(kHugePage)));
+  b.bytes = std::unique_ptr<uint8_t, ByteBufferFree>(p, ByteBufferFree{true});
+  ::madvise(p, (n + kHugePage - 1) / kHugePage * kHugePage, MADV_HUGEPAGE);  // advisory only
+  return b;
+}
 
 NumericArray NumericArray::view(ScalarType type, uint32_t components, uint64_t tuples,
                                 const uint8_t* data, bool swap) {
@@ -31,7 +56,7 @@ NumericArray NumericArray::owned(ScalarType type, uint32_t components, uint64_t 
   return a;
 }
 
-std::vector<float> toFloats(const NumericArray& a, int component) {
+std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads) {
   std::vector<float> out(a.tuples);
   const uint32_t nc = a.components;
   visitArray(a, [&](auto tag, auto swap) {
@@ -56,12 +81,12 @@ std::vector<float> toFloats(const NumericArray& a, int component) {
             }
           }
         },
-        0, kParallelMin);
+        threads, kParallelMin);
   });
   return out;
 }
 
-std::vector<glm::dvec3> toPoints(const NumericArray& a) {
+std::vector<glm::dvec3> toPoints(const NumericArray& a, unsigned threads) {
   std::vector<glm::dvec3> out(a.tuples);
   visitArray(a, [&](auto tag, auto swap) {
     using T = typename decltype(tag)::type;
@@ -77,7 +102,7 @@ std::vector<glm::dvec3> toPoints(const NumericArray& a) {
                       static_cast<double>(loadAs<T, kSwap>(p + 2 * sizeof(T)))};
           }
         },
-        0, kParallelMin);
+        threads, kParallelMin);
   });
   return out;
 }

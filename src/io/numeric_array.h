@@ -16,11 +16,18 @@
 
 namespace sm::io {
 
-// Uninitialised bytes (no memset for buffers that are filled right away).
+// Uninitialised bytes (no memset for buffers that are filled right away). Large buffers are
+// aligned to 2 MiB and marked for transparent huge pages: filling hundreds of megabytes of
+// decompressed data otherwise costs a page fault and a page clear per 4 KiB.
+struct ByteBufferFree {
+  bool huge = false;
+  void operator()(uint8_t* p) const;
+};
+
 struct ByteBuffer {
-  std::unique_ptr<uint8_t[]> bytes;
+  std::unique_ptr<uint8_t, ByteBufferFree> bytes;
   size_t size = 0;
-  static ByteBuffer allocate(size_t n) { return {std::unique_ptr<uint8_t[]>(new uint8_t[n]), n}; }
+  static ByteBuffer allocate(size_t n);
   uint8_t* data() { return bytes.get(); }
   const uint8_t* data() const { return bytes.get(); }
 };
@@ -51,10 +58,11 @@ decltype(auto) visitArray(const NumericArray& a, F&& f) {
 }
 
 // Values of a point field: component `component`, or for component < 0 the single value of a
-// one-component array or the magnitude of a vector. Non-finite values pass through.
-std::vector<float> toFloats(const NumericArray& a, int component);
+// one-component array or the magnitude of a vector. Non-finite values pass through. threads: 0
+// for all cores.
+std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads = 0);
 // Tuples of three components as points (callers check components == 3).
-std::vector<glm::dvec3> toPoints(const NumericArray& a);
+std::vector<glm::dvec3> toPoints(const NumericArray& a, unsigned threads = 0);
 // Integer values (cell types, offsets, cluster ids); floating-point values must be whole
 // numbers and unsigned ones must fit in int64, else sm::FileError(source, what, ...).
 std::vector<int64_t> toInt64(const NumericArray& a, const std::string& source,

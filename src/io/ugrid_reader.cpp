@@ -117,8 +117,10 @@ class UgridReader {
                       n.tets + n.pyrs + n.prisms + n.hexes, " volume elements, which need ",
                       payload, " bytes; the file has ", bytes_.size() - pos);
     const uint8_t* d = bytes_.data() + pos;
-    builder_.setPoints(toPoints(NumericArray::view(
-        rs == 8 ? ScalarType::Float64 : ScalarType::Float32, 3, n.nodes, d, swap_)));
+    builder_.setPoints(
+        toPoints(NumericArray::view(rs == 8 ? ScalarType::Float64 : ScalarType::Float32, 3, n.nodes,
+                                    d, swap_),
+                 options_.threads));
     d += 3 * n.nodes * rs + n.surfaceInts() * is;
     addSurfaceCells();
     if (is == 8)
@@ -253,7 +255,8 @@ class UgridReader {
       throw FileError(path, "has ", f.size(), " bytes; a field of ", src_, " needs ", counts_.nodes,
                       " x 4 = ", counts_.nodes * 4, " (one little-endian float32 per node)");
     return toFloats(
-        NumericArray::view(ScalarType::Float32, 1, counts_.nodes, f.data(), needsSwap(false)), -1);
+        NumericArray::view(ScalarType::Float32, 1, counts_.nodes, f.data(), needsSwap(false)), -1,
+        options_.threads);
   }
 
   FileBytes& bytes_;

@@ -94,7 +94,7 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
                             " is corrupt (zlib: ", rc == Z_OK ? "wrong size" : zError(rc), ")");
         }
       },
-      0, 4);
+      f.threads, 4);
   return p;
 }
 
@@ -131,7 +131,7 @@ Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t exp
              : readUncompressed(src, format, expectedBytes, source, what);
 }
 
-std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level,
+std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level, unsigned threads,
                                     const std::function<void(uint64_t, uint64_t, uint8_t*)>& fill) {
   const uint64_t nBlocks = (bytes + blockSize - 1) / blockSize;
   const uint64_t last = bytes % blockSize;
@@ -150,7 +150,7 @@ std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int leve
           blocks[b].resize(cap);
         }
       },
-      0, 2);
+      threads, 2);
   std::vector<uint64_t> header = {nBlocks, blockSize, last};
   uint64_t total = (3 + nBlocks) * 8;
   for (const auto& b : blocks) {

@@ -23,6 +23,7 @@ struct BinaryFormat {
   bool header64 = false;  // header_type="UInt64"
   bool swap = false;      // byte_order is not the host's
   Compressor compressor = Compressor::None;
+  unsigned threads = 0;  // inflating blocks (0: all cores)
 };
 
 // Sequential reader over raw bytes or base64 text.
@@ -60,7 +61,7 @@ Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t exp
 
 // Writer side: `bytes` bytes, produced block by block by fill(offset, n, dst), as zlib blocks
 // of blockSize bytes with a UInt64 little-endian block table in front (VTK's layout).
-std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level,
+std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level, unsigned threads,
                                     const std::function<void(uint64_t, uint64_t, uint8_t*)>& fill);
 
 }  // namespace sm::io

@@ -432,13 +432,14 @@ void LegacyReader::addFields(mesh::MeshBuilder& b) {
   std::vector<ArrayInfo> infos;
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
   for (const FieldLoad& load : planFields(src_, infos, options_))
-    b.addFieldStep(load.field, load.step, toFloats(pointArrays_[load.array].data, load.component));
+    b.addFieldStep(load.field, load.step,
+                   toFloats(pointArrays_[load.array].data, load.component, options_.threads));
 }
 
 mesh::UnstructuredMesh LegacyReader::build() {
   mesh::MeshBuilder b(src_);
   if (numPoints_ > 0 && !points_.data) throw FileError(src_, "has no POINTS");
-  if (numPoints_ > 0) b.setPoints(toPoints(points_));
+  if (numPoints_ > 0) b.setPoints(toPoints(points_, options_.threads));
   if (haveCells_ != haveTypes_)
     throw FileError(src_,
                     haveCells_ ? "has CELLS but no CELL_TYPES" : "has CELL_TYPES but no CELLS");

@@ -19,8 +19,9 @@ constexpr uint64_t kMaxBytes = uint64_t(1) << 60;
 
 }  // namespace
 
-VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type)
+VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads)
     : source_(std::move(source)) {
+  format_.threads = threads;
   parse(bytes, type);
 }
 
@@ -29,7 +30,7 @@ void VtuDocument::parse(FileBytes& bytes, const char* type) {
   size_t tag = text.find("<AppendedData");
   pugi::xml_parse_result result;
   if (tag == std::string_view::npos) {
-    result = doc_.load_buffer_inplace(bytes.data(), bytes.size());
+    result = doc_.load_buffer_inplace(bytes.writableData(), bytes.size());
   } else {
     // Parse a copy of the XML before the appended data, closed off by hand; the data itself is
     // located from the tag: it starts after the '_' that follows it.

@@ -20,7 +20,7 @@ class VtuDocument {
  public:
   // Parses bytes (in place: bytes must outlive the document). `type` is the VTKFile type this
   // reader expects ("UnstructuredGrid"); throws sm::FileError for anything else.
-  VtuDocument(FileBytes& bytes, std::string source, const char* type);
+  VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads = 0);
   VtuDocument(const VtuDocument&) = delete;
   VtuDocument& operator=(const VtuDocument&) = delete;
 

@@ -76,7 +76,8 @@ class VtuReader {
       if (p.numPoints == 0) continue;
       pugi::xml_node arr = p.node.child("Points").child("DataArray");
       if (!arr) throw FileError(src_, "piece ", k, " has ", p.numPoints, " points but no <Points>");
-      std::vector<glm::dvec3> pts = toPoints(doc_.decode(arr, p.numPoints, "points", 3));
+      std::vector<glm::dvec3> pts =
+          toPoints(doc_.decode(arr, p.numPoints, "points", 3), options_.threads);
       if (all.empty())
         all = std::move(pts);
       else
@@ -214,7 +215,7 @@ class VtuReader {
         if (!a) throw FileError(src_, "a piece lacks the point array '", name, "'");
         std::vector<float> v = toFloats(
             doc_.decode(a, p.numPoints, quoted("point array", name), infos[load.array].components),
-            load.component);
+            load.component, options_.threads);
         if (values.empty())
           values = std::move(v);
         else
@@ -255,7 +256,7 @@ class VtuReader {
 
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options, std::optional<int32_t> pieceCluster) {
-  VtuDocument doc(bytes, source, "UnstructuredGrid");
+  VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads);
   return VtuReader(doc, options, pieceCluster).read();
 }
 

@@ -224,7 +224,7 @@ void writeOne(const std::string& path, const mesh::UnstructuredMesh& m,
   std::vector<OutArray> arrays = meshArrays(m);
   for (OutArray& a : arrays) {
     if (options.compress) {
-      a.compressed = compressBlocks(a.bytes, kBlockSize, kZlibLevel, a.fill);
+      a.compressed = compressBlocks(a.bytes, kBlockSize, kZlibLevel, options.threads, a.fill);
       a.encodedSize = a.compressed.size();
     } else {
       a.encodedSize = 8 + a.bytes;

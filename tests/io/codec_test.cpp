@@ -42,10 +42,10 @@ TEST(ZlibBlocks, RoundTripWithPartialAndFullLastBlocks) {
     std::vector<uint8_t> raw(bytes);
     std::iota(raw.begin(), raw.end(), uint8_t(7));
     std::vector<uint8_t> enc = compressBlocks(
-        bytes, 1024, 1,
+        bytes, 1024, 1, 0,
         [&](uint64_t b, uint64_t n, uint8_t* dst) { std::memcpy(dst, raw.data() + b, n); });
     PayloadSource src = PayloadSource::raw(enc, 0);
-    BinaryFormat f{true, false, Compressor::ZLib};
+    BinaryFormat f{true, false, Compressor::ZLib, 0};
     Payload p = readPayload(src, f, bytes, "t.vtu", "array");
     ASSERT_TRUE(bytes == 0 || p.data);
     EXPECT_TRUE(bytes == 0 || std::memcmp(p.data, raw.data(), bytes) == 0);
@@ -57,12 +57,12 @@ TEST(ZlibBlocks, RoundTripWithPartialAndFullLastBlocks) {
 TEST(ZlibBlocks, CorruptBlockIsAFileError) {
   std::vector<uint8_t> raw(5000, 3);
   std::vector<uint8_t> enc = compressBlocks(
-      raw.size(), 1024, 1,
+      raw.size(), 1024, 1, 0,
       [&](uint64_t b, uint64_t n, uint8_t* dst) { std::memcpy(dst, raw.data() + b, n); });
   enc[enc.size() - 3] ^= 0x55;
   PayloadSource src = PayloadSource::raw(enc, 0);
   try {
-    readPayload(src, {true, false, Compressor::ZLib}, raw.size(), "t.vtu", "array 'x'");
+    readPayload(src, {true, false, Compressor::ZLib, 0}, raw.size(), "t.vtu", "array 'x'");
     FAIL();
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find("t.vtu: array 'x': compressed block 4 is corrupt"),
