@@ -15,6 +15,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
+#include "io/array_plan.h"
 #include "io/mesh_io.h"
 #include "io/vtk_binary.h"
 
@@ -59,6 +60,12 @@ std::string xmlEscape(const std::string& s) {
     }
   }
   return r;
+}
+
+// The array holding step s of f: NAME@t<s> when f has several steps, or when its name alone
+// would read back as a step (a one-step field "p@t3" is written "p@t3@t0").
+std::string arrayName(const mesh::Field& f, uint64_t s) {
+  return f.numSteps() > 1 || splitStepName(f.name).step ? concat(f.name, "@t", s) : f.name;
 }
 
 // An array of `count` values of T; fill(first, n, out) writes values [first, first + n).
@@ -145,7 +152,7 @@ std::vector<OutArray> meshArrays(const mesh::UnstructuredMesh& m) {
   for (const mesh::Field& f : m.fields) {
     for (uint64_t s = 0; s < f.numSteps(); ++s) {
       SM_CHECK_EQ(f.steps[s].size(), m.points.size());
-      std::string name = f.numSteps() > 1 ? concat(f.name, "@t", s) : f.name;
+      const std::string name = arrayName(f, s);
       const std::vector<float>* v = &f.steps[s];
       out.push_back(makeArray<float>("PointData", dataArray("Float32", name), v->size(),
                                      [v](uint64_t b, uint64_t n, float* o) {
@@ -325,9 +332,7 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   x += "\" header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n    <PPointData>\n";
   for (const mesh::Field& f : mesh.fields)
     for (uint64_t s = 0; s < f.numSteps(); ++s)
-      x +=
-          concat("      <PDataArray ",
-                 dataArray("Float32", f.numSteps() > 1 ? concat(f.name, "@t", s) : f.name), "/>\n");
+      x += concat("      <PDataArray ", dataArray("Float32", arrayName(f, s)), "/>\n");
   x += "    </PPointData>\n    <PCellData>\n      <PDataArray " + dataArray("Int32", "cluster") +
        "/>\n    </PCellData>\n    <PPoints>\n      <PDataArray " +
        dataArray("Float64", "Points", 3) + "/>\n    </PPoints>\n" + pieces +

@@ -119,6 +119,10 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
     throw FileError(source, "the pieces hold ", total, " points, more than 2^32 - 1");
   Welding w = weldPoints(pieces);
   weldFields(source, pieces, w, out);
+  for (auto& p : pieces) {  // no longer needed: free them before the cells are copied
+    std::vector<glm::dvec3>().swap(p.points);
+    std::vector<mesh::Field>().swap(p.fields);
+  }
   for (int t = 0; t < mesh::kNumCellTypes; ++t) {
     uint64_t n = 0;
     for (const auto& p : pieces) n += p.cells[t].size();

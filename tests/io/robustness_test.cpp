@@ -1,7 +1,7 @@
 // Other people's files: truncated, corrupted, or declaring absurd sizes. Every reader must answer
 // with a mesh or one sm::FileError naming the input, never crash, hang, or allocate what the file
-// merely claims. A replaced global operator new enforces the last point: while a limit is set, a
-// larger request throws std::bad_alloc, which these tests count as a failure.
+// merely claims. A replaced global operator new (plain and aligned) enforces the last point: while
+// a limit is set, a larger request throws std::bad_alloc, which these tests count as a failure.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -20,31 +20,33 @@
 namespace {
 std::atomic<size_t> gAllocationLimit{SIZE_MAX};
 
-void* allocate(std::size_t n) {
+void* allocate(std::size_t n, std::size_t align = 0) {
   if (n > gAllocationLimit.load(std::memory_order_relaxed)) throw std::bad_alloc();
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
+  void* p = nullptr;
+  if (align > alignof(std::max_align_t)) {
+    if (posix_memalign(&p, align, n ? n : 1) != 0) p = nullptr;
+  } else {
+    p = std::malloc(n ? n : 1);
+  }
+  if (!p) throw std::bad_alloc();
+  return p;
 }
 }  // namespace
 
-void* operator new(std::size_t n) {
-  return allocate(n);
-}
-void* operator new[](std::size_t n) {
-  return allocate(n);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
+// clang-format off
+void* operator new(std::size_t n) { return allocate(n); }
+void* operator new[](std::size_t n) { return allocate(n); }
+void* operator new(std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+// clang-format on
 
 namespace sm::io {
 namespace {
