@@ -26,11 +26,15 @@ struct InfoOptions {
   std::vector<int> pieces;
 };
 
+// Cells of each cluster id; empty when the ids are too sparse to list (a file may number its
+// clusters up to 2^31 - 1).
 std::vector<uint64_t> cellsPerCluster(const mesh::UnstructuredMesh& m) {
-  std::vector<uint64_t> n(std::max(m.numClusters(), 0));
+  const uint64_t n = uint64_t(std::max(m.numClusters(), 0));
+  if (n > 2 * m.numCells() + 4096) return {};
+  std::vector<uint64_t> count(n);
   for (const auto& c : m.clusters)
-    for (int32_t id : c) ++n[id];
-  return n;
+    for (int32_t id : c) ++count[id];
+  return count;
 }
 
 nlohmann::json rangeJson(const mesh::Range& r) {
@@ -56,7 +60,9 @@ nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m) {
   j["quadraticReduced"] = m.skipped.quadraticReduced;
   j["invertedFixed"] = m.invertedFixed;
   j["clusters"] = m.numClusters();
-  j["cellsPerCluster"] = cellsPerCluster(m);
+  const std::vector<uint64_t> per = cellsPerCluster(m);
+  j["cellsPerCluster"] =
+      per.empty() && m.numCells() ? nlohmann::json(nullptr) : nlohmann::json(per);
   const mesh::Bounds b = m.bounds();
   j["bounds"] =
       b.empty ? nlohmann::json(nullptr)

@@ -317,6 +317,10 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   fs::create_directories(folder, ec);
   if (ec)
     throw FileError(folder.string(), "cannot create the folder for the pieces: ", ec.message());
+  // One piece per cluster id, empty ones included: sparse ids would mean absurdly many files.
+  if (uint64_t(mesh.numClusters()) > mesh.numCells() + 4096)
+    throw Error(path, ": the mesh numbers its clusters up to ", mesh.numClusters() - 1,
+                " but has only ", mesh.numCells(), " cells; renumber them before writing pieces");
   const auto byCluster = cellsByCluster(mesh);
   std::vector<uint32_t> local(mesh.points.size(), 0xFFFFFFFFu);
   std::string pieces;

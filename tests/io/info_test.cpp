@@ -83,6 +83,19 @@ TEST(InfoCommand, TextNamesEverything) {
     EXPECT_NE(out.find(s), std::string::npos) << s << "\n" << out;
 }
 
+TEST(InfoCommand, SparseClusterIdsAreNotListed) {
+  const std::string path = sm::test::outputDir("InfoCommand.Sparse") + "/sparse.vtk";
+  io::test::writeText(path,
+                      "# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                      "POINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\n"
+                      "CELL_TYPES 1\n10\nCELL_DATA 1\nSCALARS cluster int\nLOOKUP_TABLE default\n"
+                      "2000000000\n");
+  nlohmann::json j = nlohmann::json::parse(runInfo({path, "--json"}));
+  EXPECT_EQ(j["clusters"], 2000000001);
+  EXPECT_TRUE(j["cellsPerCluster"].is_null());
+  EXPECT_NE(runInfo({path}).find("clusters          2000000001\n"), std::string::npos);
+}
+
 TEST(InfoCommand, ErrorsAreSmErrors) {
   EXPECT_THROW(runInfo({io::test::fixturePath("mesh_ascii.vtu"), "--cluster-array", "quality"}),
                FileError);

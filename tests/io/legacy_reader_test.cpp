@@ -4,6 +4,7 @@
 
 #include "io/mesh_io.h"
 #include "io_test_util.h"
+#include "mesh/element_geometry.h"
 #include "support/test_support.h"
 
 namespace sm::io {
@@ -42,10 +43,10 @@ TEST(LegacyReader, SharedPostFile) {
   ASSERT_EQ(m.fields.size(), 1u);
   EXPECT_EQ(m.fields[0].name, "Pressure");
   EXPECT_EQ(m.fields[0].steps[0][1000], 0.9941366910934448f);
-  // VTK lists cell 5000 as 1156 1145 1431 1144; an inverted tetrahedron gets 1 and 2 swapped.
-  std::vector<uint32_t> ids = cellIds(m, CellType::Tet, 5000);
-  EXPECT_TRUE(ids == (std::vector<uint32_t>{1156, 1145, 1431, 1144}) ||
-              ids == (std::vector<uint32_t>{1156, 1431, 1145, 1144}));
+  // VTK lists cell 5000 as 1156 1145 1431 1144; if that is inverted, 1 and 2 swap.
+  std::vector<uint32_t> vtk = {1156, 1145, 1431, 1144};
+  if (mesh::signedVolume(CellType::Tet, vtk, m.points) < 0) std::swap(vtk[1], vtk[2]);
+  EXPECT_EQ(cellIds(m, CellType::Tet, 5000), vtk);
   test::expectAllPositive(m);
   EXPECT_TRUE(m.timeValues.empty());
 }
@@ -70,6 +71,14 @@ TEST(LegacyReader, SharedNotchFile) {
   for (double v : t) sum += v * v;
   EXPECT_FLOAT_EQ(s->steps[0][2000], float(std::sqrt(sum)));
   test::expectAllPositive(m);
+  // VTK lists the first wedge (file cell 1172) as 3307 3340 3040 349 333 807.
+  std::vector<uint32_t> wedge = {3307, 3340, 3040, 349, 333, 807};
+  if (mesh::signedVolume(CellType::Wedge, wedge, m.points) < 0) {
+    std::swap(wedge[1], wedge[2]);
+    std::swap(wedge[4], wedge[5]);
+  }
+  EXPECT_EQ(cellIds(m, CellType::Wedge, 0), wedge);
+  EXPECT_EQ(cellIds(m, CellType::Hex, 0).size(), 8u);
   ReadOptions o;
   o.fields = {"Nodal Stress[3]"};
   m = readMesh(sm::test::sharedDataPath("notch_stress_fixed.vtk"), o);

@@ -99,6 +99,14 @@ TEST(PvtuWriter, EmptyMeshGivesOneEmptyPiece) {
   EXPECT_EQ(r.numCells(), 0u);
 }
 
+TEST(PvtuWriter, RefusesSparseClusterIds) {
+  mesh::UnstructuredMesh m = test::makeTestMesh(2, 1);
+  m.clusters[mesh::typeIndex(CellType::Hex)][0] = 1 << 30;
+  const std::string dir = sm::test::outputDir("PvtuWriter.Sparse");
+  EXPECT_THROW(writePvtu(dir + "/sparse.pvtu", m), Error);
+  EXPECT_FALSE(fs::exists(dir + "/sparse.pvtu"));
+}
+
 TEST(VtuWriter, UnwritablePathIsAFileErrorAndLeavesNothing) {
   std::string msg =
       fileErrorOf([] { writeVtu("/nonexistent-dir/x.vtu", test::makeTestMesh(2, 1)); });
