@@ -10,6 +10,8 @@
 // field NAME with K steps; a plain "NAME" is a field with one step.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,15 +30,28 @@ struct ReadOptions {
   std::string clusterArray;
   // .pvtu only: read just these pieces (cluster ids stay the global piece numbers). Empty: all.
   std::vector<int> pieces;
+  // Threads for decompression and conversions (0: all cores; 1 for per-core measurements).
+  unsigned threads = 0;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});
+
+// Reads a mesh held in memory (fuzzers, in-situ callers); `name` gives the format as a path does
+// and names the input in messages. .pvtu is not accepted (its pieces are files), and .ugrid
+// fields are not looked for (they live in side files).
+mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                          const ReadOptions& options = {});
+
+// What readMesh takes the file for, in words ("VTK XML unstructured grid (.vtu)", ...); throws
+// sm::Error for a name no reader accepts.
+std::string formatDescription(const std::string& path);
 
 // Pieces in a .pvtu without reading them (1 for every other format).
 int countPieces(const std::string& path);
 
 struct WriteOptions {
   bool compress = true;  // zlib-compressed appended raw data
+  unsigned threads = 0;  // threads compressing (0: all cores)
 };
 
 // Writes a .pvtu and one .vtu per cluster beside it (PATH_STEM/PATH_STEM_<k>.vtu). Fields with

@@ -1,0 +1,151 @@
+// `shellmarch info FILE`: what a mesh file holds as shellmarch reads it (element counts, skipped
+// and fixed cells, clusters, fields with their steps and ranges, bounds), in words or as exactly
+// one JSON object on stdout. Reader warnings go to stderr, so --json output stays parseable.
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "common/error.h"
+#include "io/mesh_io.h"
+
+namespace sm::app {
+namespace {
+
+using mesh::CellType;
+
+struct InfoOptions {
+  std::string file;
+  bool json = false;
+  std::vector<std::string> fields;
+  std::string clusterArray;
+  std::vector<int> pieces;
+};
+
+// Cells of each cluster id; empty when the ids are too sparse to list (a file may number its
+// clusters up to 2^31 - 1).
+std::vector<uint64_t> cellsPerCluster(const mesh::UnstructuredMesh& m) {
+  const uint64_t n = uint64_t(std::max(m.numClusters(), 0));
+  if (n > 2 * m.numCells() + 4096) return {};
+  std::vector<uint64_t> count(n);
+  for (const auto& c : m.clusters)
+    for (int32_t id : c) ++count[id];
+  return count;
+}
+
+nlohmann::json rangeJson(const mesh::Range& r) {
+  return r.empty ? nlohmann::json(nullptr) : nlohmann::json::array({r.lo, r.hi});
+}
+
+nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m) {
+  nlohmann::json j;
+  j["file"] = o.file;
+  j["format"] = io::formatDescription(o.file);
+  j["pieces"] = io::countPieces(o.file);
+  j["points"] = m.numPoints();
+  j["tets"] = m.numCells(CellType::Tet);
+  j["pyramids"] = m.numCells(CellType::Pyramid);
+  j["wedges"] = m.numCells(CellType::Wedge);
+  j["hexes"] = m.numCells(CellType::Hex);
+  j["cells"] = m.numCells();
+  j["skipped"] = {{"surface", m.skipped.surface},
+                  {"lineOrVertex", m.skipped.lineOrVertex},
+                  {"polyhedra", m.skipped.polyhedra},
+                  {"other", m.skipped.other},
+                  {"total", m.skipped.totalSkipped()}};
+  j["quadraticReduced"] = m.skipped.quadraticReduced;
+  j["invertedFixed"] = m.invertedFixed;
+  j["clusters"] = m.numClusters();
+  const std::vector<uint64_t> per = cellsPerCluster(m);
+  j["cellsPerCluster"] =
+      per.empty() && m.numCells() ? nlohmann::json(nullptr) : nlohmann::json(per);
+  const mesh::Bounds b = m.bounds();
+  j["bounds"] =
+      b.empty ? nlohmann::json(nullptr)
+              : nlohmann::json{{"lo", {b.lo.x, b.lo.y, b.lo.z}}, {"hi", {b.hi.x, b.hi.y, b.hi.z}}};
+  j["timeValues"] = m.timeValues;
+  j["fields"] = nlohmann::json::array();
+  for (const mesh::Field& f : m.fields)
+    j["fields"].push_back(
+        {{"name", f.name}, {"steps", f.numSteps()}, {"range", rangeJson(mesh::fieldRange(f))}});
+  return j;
+}
+
+void printText(std::ostream& out, const InfoOptions& o, const mesh::UnstructuredMesh& m) {
+  auto row = [&out](const char* label, const auto& value) {
+    out << "  " << label << std::string(18 - std::string(label).size(), ' ') << value << "\n";
+  };
+  out << o.file << ": " << io::formatDescription(o.file);
+  if (int n = io::countPieces(o.file); n > 1) out << ", " << n << " pieces";
+  out << "\n";
+  row("points", m.numPoints());
+  for (CellType t : mesh::kAllCellTypes)
+    row(std::string(mesh::cellTypePluralName(t)).c_str(), m.numCells(t));
+  const mesh::SkippedCells& s = m.skipped;
+  row("skipped cells",
+      s.totalSkipped() == 0
+          ? std::string("none")
+          : concat(s.totalSkipped(), " (2D ", s.surface, ", vertex/line ", s.lineOrVertex,
+                   ", polyhedra ", s.polyhedra, ", other ", s.other, ")"));
+  row("quadratic cells", concat(s.quadraticReduced, " reduced to their corners"));
+  row("inverted cells", concat(m.invertedFixed, " fixed"));
+  const std::vector<uint64_t> per = cellsPerCluster(m);
+  std::string clusters = concat(m.numClusters());
+  if (per.size() > 1)
+    clusters += concat(" (", *std::min_element(per.begin(), per.end()), " to ",
+                       *std::max_element(per.begin(), per.end()), " cells each)");
+  row("clusters", clusters);
+  const mesh::Bounds b = m.bounds();
+  if (!b.empty)
+    row("bounds", concat("x [", b.lo.x, ", ", b.hi.x, "]  y [", b.lo.y, ", ", b.hi.y, "]  z [",
+                         b.lo.z, ", ", b.hi.z, "]"));
+  if (!m.timeValues.empty()) {
+    std::string t;
+    for (double v : m.timeValues) t += (t.empty() ? "" : ", ") + concat(v);
+    row("time values", t);
+  }
+  row("fields", m.fields.size());
+  for (const mesh::Field& f : m.fields) {
+    const mesh::Range r = mesh::fieldRange(f);
+    out << "    " << f.name << ": " << f.numSteps() << (f.numSteps() == 1 ? " step" : " steps")
+        << ", range "
+        << (r.empty ? std::string("none (no finite values)") : concat("[", r.lo, ", ", r.hi, "]"))
+        << "\n";
+  }
+}
+
+void runInfo(const InfoOptions& o) {
+  io::ReadOptions read;
+  read.fields = o.fields;
+  read.clusterArray = o.clusterArray;
+  read.pieces = o.pieces;
+  const mesh::UnstructuredMesh m = io::readMesh(o.file, read);
+  if (o.json)
+    std::cout << infoJson(o, m).dump(2) << std::endl;
+  else
+    printText(std::cout, o, m);
+}
+
+}  // namespace
+
+void registerInfo(CLI::App& app) {
+  auto o = std::make_shared<InfoOptions>();
+  CLI::App* sub =
+      app.add_subcommand("info", "Describe a mesh file: cells, clusters, fields, bounds");
+  sub->add_option("file", o->file, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
+  sub->add_flag("--json", o->json, "Print one JSON object instead of text");
+  sub->add_option("--field", o->fields,
+                  "Point field to load, NAME or NAME[k] (repeatable; default: all)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("--cluster-array", o->clusterArray, "Cell array holding cluster ids");
+  sub->add_option("--pieces", o->pieces, ".pvtu pieces to read, e.g. 0,3 (default: all)")
+      ->delimiter(',');
+  sub->callback([o] { runInfo(*o); });
+}
+
+}  // namespace sm::app

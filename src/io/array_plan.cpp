@@ -1,0 +1,157 @@
+#include "io/array_plan.h"
+
+#include <algorithm>
+#include <charconv>
+
+#include "common/error.h"
+
+namespace sm::io {
+namespace {
+
+struct Group {
+  std::string base;
+  uint32_t components = 1;
+  bool identifier = false;
+  bool plain = false;                              // has a step-less array
+  std::vector<std::pair<uint64_t, size_t>> steps;  // (step, array index)
+};
+
+std::vector<Group> groupArrays(const std::string& source, const std::vector<ArrayInfo>& arrays) {
+  std::vector<Group> groups;
+  for (size_t i = 0; i < arrays.size(); ++i) {
+    StepName s = splitStepName(arrays[i].name);
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const Group& g) { return g.base == s.base; });
+    if (it == groups.end()) {
+      groups.push_back({s.base, arrays[i].components, arrays[i].identifier, false, {}});
+      it = groups.end() - 1;
+    }
+    Group& g = *it;
+    if (g.components != arrays[i].components)
+      throw FileError(source, "time steps of point array '", g.base, "' have ", g.components,
+                      " and ", arrays[i].components, " components");
+    const uint64_t step = s.step.value_or(0);
+    const bool clash =
+        (s.step ? g.plain : !g.steps.empty()) ||
+        std::any_of(g.steps.begin(), g.steps.end(), [&](const auto& e) { return e.first == step; });
+    if (clash)
+      throw FileError(source, "point array '", arrays[i].name, "' repeats ",
+                      s.step ? "a time step" : "a name", " of field '", g.base, "'");
+    g.plain = g.plain || !s.step;
+    g.steps.emplace_back(step, i);
+  }
+  for (auto& g : groups) std::sort(g.steps.begin(), g.steps.end());
+  return groups;
+}
+
+std::string listNames(const std::vector<Group>& groups) {
+  std::string s;
+  for (const auto& g : groups) {
+    if (!s.empty()) s += ", ";
+    s += g.base;
+    if (g.components > 1) s += concat(" (", g.components, " components)");
+  }
+  return s.empty() ? "none" : s;
+}
+
+// "NAME[k]" -> (NAME, k).
+std::optional<std::pair<std::string, int>> splitComponent(std::string_view request) {
+  size_t open = request.rfind('[');
+  if (open == std::string_view::npos || request.size() < open + 3 || request.back() != ']')
+    return std::nullopt;
+  int k = -1;
+  const char* b = request.data() + open + 1;
+  const char* e = request.data() + request.size() - 1;
+  auto [p, ec] = std::from_chars(b, e, k);
+  if (ec != std::errc() || p != e || k < 0) return std::nullopt;
+  return std::make_pair(std::string(request.substr(0, open)), k);
+}
+
+void addGroup(std::vector<FieldLoad>& loads, const Group& g, int component,
+              const std::string& field) {
+  for (const auto& [step, array] : g.steps) loads.push_back({array, component, field, step});
+}
+
+}  // namespace
+
+StepName splitStepName(std::string_view name) {
+  size_t at = name.rfind("@t");
+  if (at == std::string_view::npos || at == 0 || at + 2 == name.size())
+    return {std::string(name), {}};
+  uint64_t step = 0;
+  const char* b = name.data() + at + 2;
+  const char* e = name.data() + name.size();
+  auto [p, ec] = std::from_chars(b, e, step);
+  if (ec != std::errc() || p != e || *b == '+' || *b == '-') return {std::string(name), {}};
+  return {std::string(name.substr(0, at)), step};
+}
+
+std::vector<FieldLoad> planFields(const std::string& source,
+                                  const std::vector<ArrayInfo>& pointArrays,
+                                  const ReadOptions& options) {
+  std::vector<FieldLoad> loads;
+  if (!options.loadFields) return loads;
+  const std::vector<Group> groups = groupArrays(source, pointArrays);
+  if (options.fields.empty()) {
+    for (const auto& g : groups)
+      if (!g.identifier) addGroup(loads, g, -1, g.base);
+    return loads;
+  }
+  std::vector<std::string> done;
+  for (const std::string& request : options.fields) {
+    if (std::find(done.begin(), done.end(), request) != done.end()) continue;
+    done.push_back(request);
+    auto byName = [&](const std::string& n) {
+      return std::find_if(groups.begin(), groups.end(),
+                          [&](const Group& g) { return g.base == n; });
+    };
+    if (auto it = byName(request); it != groups.end()) {
+      addGroup(loads, *it, -1, request);
+      continue;
+    }
+    auto split = splitComponent(request);
+    auto it = split ? byName(split->first) : groups.end();
+    if (it == groups.end())
+      throw FileError(source, "has no point array '", split ? split->first : request,
+                      "' (point arrays: ", listNames(groups), ")");
+    if (uint32_t(split->second) >= it->components)
+      throw FileError(source, "field '", request, "': point array '", it->base, "' has ",
+                      it->components, it->components == 1 ? " component" : " components");
+    addGroup(loads, *it, split->second, request);
+  }
+  return loads;
+}
+
+std::optional<size_t> chooseClusterArray(const std::string& source,
+                                         const std::vector<std::string>& cellArrays,
+                                         const ReadOptions& options) {
+  auto find = [&](std::string_view n) -> std::optional<size_t> {
+    auto it = std::find(cellArrays.begin(), cellArrays.end(), n);
+    if (it == cellArrays.end()) return std::nullopt;
+    return static_cast<size_t>(it - cellArrays.begin());
+  };
+  if (!options.clusterArray.empty()) {
+    if (auto i = find(options.clusterArray)) return i;
+    std::string names;
+    for (const auto& n : cellArrays) names += (names.empty() ? "" : ", ") + n;
+    throw FileError(source, "has no cell array '", options.clusterArray,
+                    "' for cluster ids (cell arrays: ", names.empty() ? "none" : names, ")");
+  }
+  for (std::string_view n : {"cluster", "partition", "vtkProcessId"})
+    if (auto i = find(n)) return i;
+  return std::nullopt;
+}
+
+bool isBookkeepingArray(std::string_view name) {
+  for (std::string_view n :
+       {"vtkGhostType", "vtkValidPointMask", "vtkOriginalPointIds", "vtkOriginalCellIds",
+        "GlobalNodeId", "PedigreeNodeId", "GlobalElementId", "PedigreeElementId", "vtkGlobalIds"})
+    if (name == n) return true;
+  return false;
+}
+
+bool isTimeValuesArray(std::string_view name) {
+  return name == "TimeValue" || name == "TimeValues";
+}
+
+}  // namespace sm::io

@@ -1,0 +1,56 @@
+// Which arrays of a file become what in the mesh, by the same rules for every format
+// (docs/FORMATS.md): point arrays become fields ("NAME@t<K>" arrays are the steps of field NAME),
+// one cell array gives the cluster ids, field data "TimeValue(s)" gives the step times.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/mesh_io.h"
+
+namespace sm::io {
+
+struct ArrayInfo {
+  std::string name;  // as the file names it (legacy names already %XX-decoded)
+  uint32_t components = 1;
+  bool identifier = false;  // ids and bookkeeping (GlobalIds, vtkGhostType): only when asked
+};
+
+// One field step to load: component `component` (-1: the scalar, or a vector's magnitude) of
+// point array `array`, as step `step` of field `field`.
+struct FieldLoad {
+  size_t array = 0;
+  int component = -1;
+  std::string field;
+  uint64_t step = 0;
+};
+
+struct StepName {
+  std::string base;
+  std::optional<uint64_t> step;
+};
+// "p@t12" -> ("p", 12); any other name -> (name, none).
+StepName splitStepName(std::string_view name);
+
+// The loads that options ask for (every non-identifier array when options.fields is empty).
+// Throws sm::FileError(source, ...) for a requested name the file lacks (listing what it has), a
+// component out of range, or a name given both plain and with time steps.
+std::vector<FieldLoad> planFields(const std::string& source,
+                                  const std::vector<ArrayInfo>& pointArrays,
+                                  const ReadOptions& options);
+
+// Index of the cell array with cluster ids: options.clusterArray (sm::FileError listing the cell
+// arrays when absent), else the first of "cluster", "partition", "vtkProcessId"; none: cluster 0.
+std::optional<size_t> chooseClusterArray(const std::string& source,
+                                         const std::vector<std::string>& cellArrays,
+                                         const ReadOptions& options);
+
+// Arrays VTK and solvers use for bookkeeping rather than data: never loaded unless asked by name.
+bool isBookkeepingArray(std::string_view name);
+// Field data arrays that hold the time of each step.
+bool isTimeValuesArray(std::string_view name);
+
+}  // namespace sm::io

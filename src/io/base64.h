@@ -1,0 +1,32 @@
+// Streaming base64 decoding for VTK XML binary data. VTK encodes an array's header and its data
+// either as one stream or as separately padded streams back to back, with whitespace around and
+// sometimes inside; decoding quantum by quantum, restarting after padding, reads all of these.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace sm::io {
+
+class Base64Reader {
+ public:
+  explicit Base64Reader(std::string_view text, size_t pos = 0) : text_(text), pos_(pos) {}
+
+  // Decodes exactly n bytes into out. False when the text ends, or holds a character that is not
+  // base64, before n bytes are decoded.
+  bool read(uint8_t* out, size_t n);
+  // An upper bound on the bytes still decodable (to reject absurd sizes before allocating).
+  size_t maxRemaining() const {
+    return size_t(pendingCount_ - pendingPos_) + (text_.size() - pos_) / 4 * 3 + 3;
+  }
+
+ private:
+  bool decodeQuantum(uint8_t* out, int& count);  // 1 to 3 bytes of the next quantum
+  std::string_view text_;
+  size_t pos_;
+  uint8_t pending_[3] = {};
+  int pendingCount_ = 0, pendingPos_ = 0;
+};
+
+}  // namespace sm::io

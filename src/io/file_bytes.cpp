@@ -1,0 +1,95 @@
+#include "io/file_bytes.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "common/error.h"
+
+namespace sm::io {
+namespace {
+
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+FileBytes FileBytes::open(const std::string& path) {
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (f.fd < 0) throw FileError(path, "cannot open: ", std::strerror(errno));
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) throw FileError(path, "cannot stat: ", std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw FileError(path, "not a regular file");
+  FileBytes b;
+  if (st.st_size == 0) return b;
+  // Read-only, so that MAP_POPULATE maps the page cache as it is (a writable mapping would be
+  // populated by copying every page). Populating up front is much cheaper than a fault per page.
+  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE,
+                   f.fd, 0);
+  if (p == MAP_FAILED) throw FileError(path, "cannot map into memory: ", std::strerror(errno));
+  b.data_ = static_cast<uint8_t*>(p);
+  b.size_ = static_cast<size_t>(st.st_size);
+  b.mapped_ = true;
+  return b;
+}
+
+FileBytes FileBytes::copyOf(std::span<const uint8_t> bytes) {
+  FileBytes b;
+  if (bytes.empty()) return b;
+  b.owned_.reset(new uint8_t[bytes.size()]);
+  std::memcpy(b.owned_.get(), bytes.data(), bytes.size());
+  b.data_ = b.owned_.get();
+  b.size_ = bytes.size();
+  b.writable_ = true;
+  return b;
+}
+
+uint8_t* FileBytes::writableData() {
+  if (!writable_ && data_) {
+    // Private mapping: writes go to copies of the pages written, never to the file.
+    if (::mprotect(data_, size_, PROT_READ | PROT_WRITE) != 0)
+      throw Error("cannot make a mapped file writable: ", std::strerror(errno));
+    writable_ = true;
+  }
+  return data_;
+}
+
+FileBytes::FileBytes(FileBytes&& other) noexcept {
+  *this = std::move(other);
+}
+
+FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
+  if (this != &other) {
+    release();
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, false);
+    writable_ = std::exchange(other.writable_, false);
+    owned_ = std::move(other.owned_);
+  }
+  return *this;
+}
+
+FileBytes::~FileBytes() {
+  release();
+}
+
+void FileBytes::release() {
+  if (mapped_ && data_) ::munmap(data_, size_);
+  owned_.reset();
+  data_ = nullptr;
+  size_ = 0;
+  mapped_ = false;
+  writable_ = false;
+}
+
+}  // namespace sm::io

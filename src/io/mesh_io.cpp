@@ -1,0 +1,71 @@
+#include "io/mesh_io.h"
+
+#include "common/error.h"
+#include "common/file_util.h"
+#include "io/readers.h"
+
+namespace sm::io {
+namespace {
+
+enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid };
+
+Format formatOf(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  if (ext == ".vtu") return Format::Vtu;
+  if (ext == ".pvtu") return Format::Pvtu;
+  if (ext == ".vtk") return Format::LegacyVtk;
+  if (ext == ".ugrid") return Format::Ugrid;
+  throw Error(path, ": unknown mesh format '", ext,
+              "' (shellmarch reads .vtu, .pvtu, legacy .vtk and .ugrid files)");
+}
+
+}  // namespace
+
+mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
+  switch (formatOf(path)) {
+    case Format::Vtu:
+      return readVtu(FileBytes::open(path), path, options);
+    case Format::Pvtu:
+      return readPvtu(path, options);
+    case Format::LegacyVtk:
+      return readLegacyVtk(FileBytes::open(path), path, options);
+    case Format::Ugrid:
+      return readUgrid(FileBytes::open(path), path, options, true);
+  }
+  return {};
+}
+
+mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                          const ReadOptions& options) {
+  switch (formatOf(name)) {
+    case Format::Vtu:
+      return readVtu(FileBytes::copyOf(bytes), name, options);
+    case Format::Pvtu:
+      throw Error(name, ": a .pvtu names its pieces by file; read it with readMesh");
+    case Format::LegacyVtk:
+      return readLegacyVtk(FileBytes::copyOf(bytes), name, options);
+    case Format::Ugrid:
+      return readUgrid(FileBytes::copyOf(bytes), name, options, false);
+  }
+  return {};
+}
+
+int countPieces(const std::string& path) {
+  return formatOf(path) == Format::Pvtu ? countPvtuPieces(path) : 1;
+}
+
+std::string formatDescription(const std::string& path) {
+  switch (formatOf(path)) {
+    case Format::Vtu:
+      return "VTK XML unstructured grid (.vtu)";
+    case Format::Pvtu:
+      return "parallel VTK XML unstructured grid (.pvtu)";
+    case Format::LegacyVtk:
+      return "legacy VTK unstructured grid (.vtk)";
+    case Format::Ugrid:
+      return "AFLR3/FUN3D UGRID (.ugrid)";
+  }
+  return {};
+}
+
+}  // namespace sm::io

@@ -1,0 +1,27 @@
+// The readers behind readMesh (mesh_io.cpp chooses one by file name). They take the file's bytes
+// so that fuzzers and in-memory callers can use them without files; `source` names the input in
+// messages and, for .ugrid, gives the binary variant by its suffix.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "io/file_bytes.h"
+#include "io/mesh_io.h"
+
+namespace sm::io {
+
+// pieceCluster: every cell gets this cluster id and cell arrays are not consulted (.pvtu pieces).
+mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
+                               const ReadOptions& options,
+                               std::optional<int32_t> pieceCluster = std::nullopt);
+mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options);
+int countPvtuPieces(const std::string& path);
+mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,
+                                     const ReadOptions& options);
+// sideFiles: look for per-vertex field files beside `source` (docs/FORMATS.md); off for memory.
+mesh::UnstructuredMesh readUgrid(FileBytes bytes, const std::string& source,
+                                 const ReadOptions& options, bool sideFiles);
+
+}  // namespace sm::io

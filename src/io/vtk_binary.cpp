@@ -1,0 +1,173 @@
+#include "io/vtk_binary.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/check.h"
+#include "common/error.h"
+#include "common/parallel.h"
+
+namespace sm::io {
+namespace {
+
+// deflate cannot expand data by more than about 1032:1; a block table claiming more is corrupt.
+constexpr uint64_t kMaxZlibRatio = 1032;
+
+uint64_t readHeaderValue(const uint8_t* p, const BinaryFormat& f) {
+  return f.header64 ? loadAs<uint64_t>(p, f.swap) : loadAs<uint32_t>(p, f.swap);
+}
+
+Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
+                         const std::string& source, const std::string& what) {
+  const uint64_t hs = f.header64 ? 8 : 4;
+  ByteBuffer headerScratch;
+  const uint8_t* h = src.take(hs, headerScratch);
+  if (!h) throw FileError(source, what, ": the data ends before the array's header");
+  const uint64_t declared = readHeaderValue(h, f);
+  if (declared != expected)
+    throw FileError(source, what, ": the array holds ", declared, " bytes, expected ", expected);
+  if (expected > src.maxRemaining())
+    throw FileError(source, what, ": needs ", expected, " bytes but the data ends after ",
+                    src.maxRemaining());
+  Payload p;
+  p.data = src.take(expected, p.storage);
+  if (!p.data) throw FileError(source, what, ": the data ends before the array does");
+  return p;
+}
+
+Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
+                 const std::string& source, const std::string& what) {
+  const uint64_t hs = f.header64 ? 8 : 4;
+  ByteBuffer scratch;
+  const uint8_t* h = src.take(3 * hs, scratch);
+  if (!h) throw FileError(source, what, ": the data ends before the compression header");
+  const uint64_t nBlocks = readHeaderValue(h, f);
+  const uint64_t blockSize = readHeaderValue(h + hs, f);
+  const uint64_t lastSize = readHeaderValue(h + 2 * hs, f);
+  if (nBlocks > src.maxRemaining() / hs)
+    throw FileError(source, what, ": the compression header claims ", nBlocks,
+                    " blocks, more than the data can hold");
+  if (lastSize > blockSize)
+    throw FileError(source, what, ": the last compressed block (", lastSize,
+                    " bytes) is larger than the block size (", blockSize, ")");
+  uint64_t total = 0;
+  if (nBlocks > 0) {
+    if (nBlocks - 1 > (UINT64_MAX - blockSize) / std::max<uint64_t>(blockSize, 1))
+      throw FileError(source, what, ": the compression header claims an impossible size");
+    total = (nBlocks - 1) * blockSize + (lastSize ? lastSize : blockSize);
+  }
+  if (total != expected)
+    throw FileError(source, what, ": the array holds ", total, " bytes, expected ", expected);
+  ByteBuffer sizeScratch;
+  const uint8_t* s = src.take(nBlocks * hs, sizeScratch);
+  if (!s) throw FileError(source, what, ": the data ends inside the compression header");
+  std::vector<uint64_t> compOffset(nBlocks + 1, 0);
+  for (uint64_t b = 0; b < nBlocks; ++b) {
+    uint64_t c = readHeaderValue(s + b * hs, f);
+    if (c > src.maxRemaining() || compOffset[b] + c > src.maxRemaining())
+      throw FileError(source, what, ": compressed block ", b, " runs past the end of the data");
+    compOffset[b + 1] = compOffset[b] + c;
+  }
+  const uint64_t compTotal = compOffset[nBlocks];
+  if (total / kMaxZlibRatio > compTotal + 64 * nBlocks)
+    throw FileError(source, what, ": claims ", total, " bytes from ", compTotal,
+                    " compressed bytes, more than zlib can produce");
+  ByteBuffer compScratch;
+  const uint8_t* comp = src.take(compTotal, compScratch);
+  if (!comp) throw FileError(source, what, ": the data ends inside the compressed blocks");
+  Payload p;
+  p.storage = ByteBuffer::allocate(total);
+  p.data = p.storage.data();
+  uint8_t* out = p.storage.data();
+  parallelFor(
+      static_cast<int64_t>(nBlocks),
+      [&](int64_t b0, int64_t b1) {
+        for (int64_t b = b0; b < b1; ++b) {
+          const uint64_t want = (uint64_t(b) + 1 == nBlocks && lastSize) ? lastSize : blockSize;
+          uLongf got = want;
+          int rc = uncompress(out + uint64_t(b) * blockSize, &got, comp + compOffset[b],
+                              compOffset[b + 1] - compOffset[b]);
+          if (rc != Z_OK || got != want)
+            throw FileError(source, what, ": compressed block ", b,
+                            " is corrupt (zlib: ", rc == Z_OK ? "wrong size" : zError(rc), ")");
+        }
+      },
+      f.threads, 4);
+  return p;
+}
+
+}  // namespace
+
+PayloadSource PayloadSource::raw(std::span<const uint8_t> bytes, size_t pos) {
+  return PayloadSource(bytes, std::min(pos, bytes.size()), {}, false);
+}
+
+PayloadSource PayloadSource::base64(std::string_view text, size_t pos) {
+  return PayloadSource({}, std::min(pos, text.size()), text, true);
+}
+
+const uint8_t* PayloadSource::take(uint64_t n, ByteBuffer& scratch) {
+  if (!isBase64_) {
+    if (n > raw_.size() - pos_) return nullptr;
+    const uint8_t* p = raw_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  if (n > b64_.maxRemaining()) return nullptr;
+  scratch = ByteBuffer::allocate(std::max<uint64_t>(n, 1));
+  return b64_.read(scratch.data(), n) ? scratch.data() : nullptr;
+}
+
+uint64_t PayloadSource::maxRemaining() const {
+  return isBase64_ ? b64_.maxRemaining() : raw_.size() - pos_;
+}
+
+Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,
+                    const std::string& source, const std::string& what) {
+  return format.compressor == Compressor::ZLib
+             ? readZlib(src, format, expectedBytes, source, what)
+             : readUncompressed(src, format, expectedBytes, source, what);
+}
+
+std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level, unsigned threads,
+                                    const std::function<void(uint64_t, uint64_t, uint8_t*)>& fill) {
+  const uint64_t nBlocks = (bytes + blockSize - 1) / blockSize;
+  const uint64_t last = bytes % blockSize;
+  std::vector<std::vector<uint8_t>> blocks(nBlocks);
+  parallelFor(
+      static_cast<int64_t>(nBlocks),
+      [&](int64_t b0, int64_t b1) {
+        std::vector<uint8_t> raw(blockSize);
+        for (int64_t b = b0; b < b1; ++b) {
+          uint64_t n = std::min(blockSize, bytes - uint64_t(b) * blockSize);
+          fill(uint64_t(b) * blockSize, n, raw.data());
+          uLongf cap = compressBound(n);
+          blocks[b].resize(cap);
+          int rc = compress2(blocks[b].data(), &cap, raw.data(), n, level);
+          SM_CHECK_EQ(rc, Z_OK);
+          blocks[b].resize(cap);
+        }
+      },
+      threads, 2);
+  std::vector<uint64_t> header = {nBlocks, blockSize, last};
+  uint64_t total = (3 + nBlocks) * 8;
+  for (const auto& b : blocks) {
+    header.push_back(b.size());
+    total += b.size();
+  }
+  std::vector<uint8_t> out(total);
+  for (size_t i = 0; i < header.size(); ++i) {
+    uint64_t v = std::endian::native == std::endian::little ? header[i] : byteSwap(header[i]);
+    std::memcpy(out.data() + i * 8, &v, 8);
+  }
+  uint64_t pos = header.size() * 8;
+  for (const auto& b : blocks) {
+    std::memcpy(out.data() + pos, b.data(), b.size());
+    pos += b.size();
+  }
+  return out;
+}
+
+}  // namespace sm::io

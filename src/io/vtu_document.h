@@ -1,0 +1,54 @@
+// One VTK XML file (.vtu) as structure: the XML parsed without the appended data (raw bytes that
+// are not XML and can be gigabytes), the binary format the file declares, and the decoding of
+// its DataArray elements in every encoding (ascii, inline base64, appended raw or base64, each
+// optionally zlib-compressed).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include <pugixml.hpp>
+
+#include "io/file_bytes.h"
+#include "io/numeric_array.h"
+#include "io/vtk_binary.h"
+
+namespace sm::io {
+
+class VtuDocument {
+ public:
+  // Parses bytes (in place: bytes must outlive the document). `type` is the VTKFile type this
+  // reader expects ("UnstructuredGrid"); throws sm::FileError for anything else.
+  VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads = 0);
+  VtuDocument(const VtuDocument&) = delete;
+  VtuDocument& operator=(const VtuDocument&) = delete;
+
+  pugi::xml_node root() const { return doc_.document_element(); }
+  const std::string& source() const { return source_; }
+
+  // Decodes a DataArray holding `tuples` tuples; `components` 0 accepts any count. The result
+  // views the file where the data is raw and uncompressed.
+  NumericArray decode(pugi::xml_node dataArray, uint64_t tuples, const std::string& what,
+                      uint32_t components = 0) const;
+  // NumberOfComponents (1 when absent), checked.
+  uint32_t components(pugi::xml_node dataArray, const std::string& what) const;
+  // A required non-negative integer attribute.
+  uint64_t count(pugi::xml_node node, const char* attribute) const;
+
+ private:
+  void parse(FileBytes& bytes, const char* type);
+  void readFormat(pugi::xml_node root);
+  NumericArray decodeAscii(pugi::xml_node node, ScalarType type, uint32_t comps, uint64_t tuples,
+                           const std::string& what) const;
+
+  std::string source_;
+  std::string xmlCopy_;  // the XML part, when the file has appended data
+  pugi::xml_document doc_;
+  BinaryFormat format_;
+  bool hasAppended_ = false;
+  bool appendedBase64_ = false;
+  std::span<const uint8_t> appended_;  // after the '_' marker
+};
+
+}  // namespace sm::io

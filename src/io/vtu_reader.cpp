@@ -1,0 +1,263 @@
+// .vtu reader: assembles the mesh from a VtuDocument. A file may hold several <Piece>s; they are
+// read as one mesh (points of later pieces numbered after earlier ones, file cell numbers running
+// on), as VTK's own reader does.
+#include <algorithm>
+#include <cstring>
+
+#include "common/error.h"
+#include "common/log.h"
+#include "io/array_plan.h"
+#include "io/readers.h"
+#include "io/vtu_document.h"
+#include "mesh/mesh_builder.h"
+
+namespace sm::io {
+namespace {
+
+struct Piece {
+  pugi::xml_node node;
+  uint64_t numPoints = 0, numCells = 0;
+  uint64_t firstPoint = 0, firstCell = 0;  // in the whole file
+};
+
+// VTK's ghost flag for cells another piece owns (vtkDataSetAttributes::DUPLICATECELL).
+constexpr int64_t kDuplicateCell = 1;
+// Ids handed to the builder per cell; volume cells need at most 27 (triquadratic hexahedron).
+constexpr int64_t kMaxIds = 32;
+
+pugi::xml_node findArray(pugi::xml_node parent, std::string_view name) {
+  for (pugi::xml_node a : parent.children("DataArray"))
+    if (name == a.attribute("Name").value()) return a;
+  return {};
+}
+
+std::string quoted(std::string_view what, std::string_view name) {
+  return concat(what, " '", name, "'");
+}
+
+class VtuReader {
+ public:
+  VtuReader(const VtuDocument& doc, const ReadOptions& options, std::optional<int32_t> pieceCluster)
+      : doc_(doc),
+        src_(doc.source()),
+        options_(options),
+        pieceCluster_(pieceCluster),
+        builder_(src_) {}
+
+  mesh::UnstructuredMesh read() {
+    findPieces();
+    readPoints();
+    readCells();
+    if (!pieceCluster_) readClusters();
+    readFields();
+    readTimeValues();
+    return builder_.finish();
+  }
+
+ private:
+  void findPieces() {
+    pugi::xml_node grid = doc_.root().child("UnstructuredGrid");
+    if (!grid) throw FileError(src_, "has no <UnstructuredGrid> element");
+    uint64_t points = 0, cells = 0;
+    for (pugi::xml_node p : grid.children("Piece")) {
+      Piece piece{p, doc_.count(p, "NumberOfPoints"), doc_.count(p, "NumberOfCells"), points,
+                  cells};
+      points += piece.numPoints;
+      cells += piece.numCells;
+      pieces_.push_back(piece);
+    }
+    if (pieces_.empty()) throw FileError(src_, "has no <Piece> element");
+  }
+
+  void readPoints() {
+    std::vector<glm::dvec3> all;
+    for (size_t k = 0; k < pieces_.size(); ++k) {
+      const Piece& p = pieces_[k];
+      if (p.numPoints == 0) continue;
+      pugi::xml_node arr = p.node.child("Points").child("DataArray");
+      if (!arr) throw FileError(src_, "piece ", k, " has ", p.numPoints, " points but no <Points>");
+      std::vector<glm::dvec3> pts =
+          toPoints(doc_.decode(arr, p.numPoints, "points", 3), options_.threads);
+      if (all.empty())
+        all = std::move(pts);
+      else
+        all.insert(all.end(), pts.begin(), pts.end());
+    }
+    builder_.setPoints(std::move(all));
+  }
+
+  void readCells() {
+    for (size_t k = 0; k < pieces_.size(); ++k) {
+      const Piece& p = pieces_[k];
+      if (p.numCells == 0) continue;
+      pugi::xml_node cells = p.node.child("Cells");
+      auto need = [&](const char* name) {
+        pugi::xml_node a = findArray(cells, name);
+        if (!a) throw FileError(src_, "has ", p.numCells, " cells but no '", name, "' array");
+        return a;
+      };
+      std::vector<int64_t> offsets = toInt64(
+          doc_.decode(need("offsets"), p.numCells, "cell offsets", 1), src_, "cell offsets");
+      std::vector<int64_t> types =
+          toInt64(doc_.decode(need("types"), p.numCells, "cell types", 1), src_, "cell types");
+      int64_t prev = 0;
+      for (uint64_t c = 0; c < p.numCells; ++c) {
+        if (offsets[c] < prev)
+          throw FileError(src_, "cell offsets: offset of cell ", p.firstCell + c, " (", offsets[c],
+                          ") is ", offsets[c] < 0 ? "negative" : "smaller than the one before");
+        prev = offsets[c];
+      }
+      NumericArray conn = doc_.decode(need("connectivity"), uint64_t(prev), "cell connectivity", 1);
+      if (isFloatType(conn.type))
+        throw FileError(src_, "cell connectivity has type ", scalarTypeName(conn.type),
+                        "; point ids must be integers");
+      std::vector<int64_t> ghost;
+      if (pugi::xml_node g = findArray(p.node.child("CellData"), "vtkGhostType"))
+        ghost = toInt64(doc_.decode(g, p.numCells, "cell array 'vtkGhostType'", 1), src_,
+                        "vtkGhostType");
+      reserve(types);
+      visitArray(conn, [&](auto tag, auto swap) {
+        using T = typename decltype(tag)::type;
+        if constexpr (std::is_integral_v<T>)
+          addCells<T, decltype(swap)::value>(p, conn.data, offsets, types, ghost);
+      });
+    }
+    if (ghostCells_)
+      log::warning(src_, ": skipped ", ghostCells_,
+                   " ghost cells (vtkGhostType: owned by another piece)");
+  }
+
+  void reserve(const std::vector<int64_t>& types) {
+    uint64_t n[mesh::kNumCellTypes] = {};
+    for (int64_t t : types)
+      if (auto ct = mesh::fromVtkType(static_cast<int>(std::clamp<int64_t>(t, -1, 255))))
+        ++n[mesh::typeIndex(*ct)];
+    for (mesh::CellType t : mesh::kAllCellTypes) builder_.reserveCells(t, n[mesh::typeIndex(t)]);
+  }
+
+  template <class T, bool Swap>
+  void addCells(const Piece& p, const uint8_t* conn, const std::vector<int64_t>& offsets,
+                const std::vector<int64_t>& types, const std::vector<int64_t>& ghost) {
+    int64_t ids[kMaxIds];
+    int64_t begin = 0;
+    const int32_t cluster = pieceCluster_.value_or(0);
+    for (uint64_t c = 0; c < p.numCells; ++c) {
+      const int64_t end = offsets[c];
+      const uint64_t fileCell = p.firstCell + c;
+      if (!ghost.empty() && (ghost[c] & kDuplicateCell)) {
+        ++ghostCells_;
+        begin = end;
+        continue;
+      }
+      const int64_t n = std::min(end - begin, kMaxIds);
+      for (int64_t i = 0; i < n; ++i) {
+        T v = loadAs<T, Swap>(conn + (begin + i) * sizeof(T));
+        // Checked against this piece's points, so that no id can reach into another piece.
+        bool negative = false;
+        if constexpr (std::is_signed_v<T>) negative = v < 0;
+        if (negative || uint64_t(v) >= p.numPoints)
+          throw FileError(src_, "cell ", fileCell, " refers to point ", +v, " but ",
+                          pieces_.size() > 1 ? "its piece has " : "the file has ", p.numPoints,
+                          " points");
+        ids[i] = static_cast<int64_t>(v) + static_cast<int64_t>(p.firstPoint);
+      }
+      const int vtkType = static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20));
+      builder_.addVtkCell(vtkType, {ids, static_cast<size_t>(n)}, fileCell, cluster);
+      begin = end;
+    }
+  }
+
+  std::vector<std::string> cellArrayNames() const {
+    std::vector<std::string> names;
+    for (pugi::xml_node a : pieces_[0].node.child("CellData").children("DataArray"))
+      names.emplace_back(a.attribute("Name").value());
+    return names;
+  }
+
+  void readClusters() {
+    std::vector<std::string> names = cellArrayNames();
+    auto chosen = chooseClusterArray(src_, names, options_);
+    if (!chosen) return;
+    const std::string& name = names[*chosen];
+    std::vector<int64_t> ids;
+    for (const Piece& p : pieces_) {
+      pugi::xml_node a = findArray(p.node.child("CellData"), name);
+      if (!a) throw FileError(src_, "a piece lacks the cell array '", name, "'");
+      std::vector<int64_t> v = toInt64(doc_.decode(a, p.numCells, quoted("cell array", name), 1),
+                                       src_, quoted("cell array", name));
+      ids.insert(ids.end(), v.begin(), v.end());
+    }
+    builder_.setClusterIds(ids, name);
+  }
+
+  std::vector<ArrayInfo> pointArrays() const {
+    pugi::xml_node pd = pieces_[0].node.child("PointData");
+    std::string_view globalIds = pd.attribute("GlobalIds").value();
+    std::string_view pedigreeIds = pd.attribute("PedigreeIds").value();
+    std::vector<ArrayInfo> infos;
+    for (pugi::xml_node a : pd.children("DataArray")) {
+      std::string_view name = a.attribute("Name").value();
+      if (!scalarTypeFromXml(a.attribute("type").value())) continue;  // strings and the like
+      bool id = name == globalIds || name == pedigreeIds || isBookkeepingArray(name);
+      infos.push_back({std::string(name), doc_.components(a, quoted("point array", name)), id});
+    }
+    return infos;
+  }
+
+  void readFields() {
+    if (!options_.loadFields) return;
+    std::vector<ArrayInfo> infos = pointArrays();
+    for (const FieldLoad& load : planFields(src_, infos, options_)) {
+      const std::string& name = infos[load.array].name;
+      std::vector<float> values;
+      for (const Piece& p : pieces_) {
+        pugi::xml_node a = findArray(p.node.child("PointData"), name);
+        if (!a) throw FileError(src_, "a piece lacks the point array '", name, "'");
+        std::vector<float> v = toFloats(
+            doc_.decode(a, p.numPoints, quoted("point array", name), infos[load.array].components),
+            load.component, options_.threads);
+        if (values.empty())
+          values = std::move(v);
+        else
+          values.insert(values.end(), v.begin(), v.end());
+      }
+      builder_.addFieldStep(load.field, load.step, std::move(values));
+    }
+  }
+
+  void readTimeValues() {
+    pugi::xml_node fd = doc_.root().child("UnstructuredGrid").child("FieldData");
+    for (pugi::xml_node a : fd.children("DataArray")) {
+      std::string_view name = a.attribute("Name").value();
+      if (!isTimeValuesArray(name)) continue;
+      uint64_t n = a.attribute("NumberOfTuples") ? doc_.count(a, "NumberOfTuples") : 1;
+      NumericArray t = doc_.decode(a, n, quoted("field data", name), 1);
+      std::vector<double> times(n);
+      visitArray(t, [&](auto tag, auto swap) {
+        using T = typename decltype(tag)::type;
+        for (uint64_t i = 0; i < n; ++i)
+          times[i] = static_cast<double>(loadAs<T, decltype(swap)::value>(t.data + i * sizeof(T)));
+      });
+      builder_.setTimeValues(std::move(times));
+      return;
+    }
+  }
+
+  const VtuDocument& doc_;
+  const std::string& src_;
+  const ReadOptions& options_;
+  std::optional<int32_t> pieceCluster_;
+  mesh::MeshBuilder builder_;
+  std::vector<Piece> pieces_;
+  uint64_t ghostCells_ = 0;
+};
+
+}  // namespace
+
+mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
+                               const ReadOptions& options, std::optional<int32_t> pieceCluster) {
+  VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads);
+  return VtuReader(doc, options, pieceCluster).read();
+}
+
+}  // namespace sm::io

@@ -1,0 +1,146 @@
+#include "io/weld.h"
+
+#include <bit>
+#include <cstring>
+
+#include "common/error.h"
+#include "common/log.h"
+
+namespace sm::io {
+namespace {
+
+constexpr uint32_t kEmpty = 0xFFFFFFFFu;
+
+uint64_t hashPoint(const glm::dvec3& p) {
+  uint64_t h = std::bit_cast<uint64_t>(p.x) * 0x9E3779B97F4A7C15ull;
+  h ^= std::bit_cast<uint64_t>(p.y) + 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+  h ^= std::bit_cast<uint64_t>(p.z) + 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+  h ^= h >> 33;
+  h *= 0xFF51AFD7ED558CCDull;
+  h ^= h >> 33;
+  return h;
+}
+
+bool sameBits(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Point ids of the welded mesh for every point of every piece, and the piece that first had each.
+struct Welding {
+  std::vector<glm::dvec3> points;
+  std::vector<uint32_t> firstPiece;
+  std::vector<std::vector<uint32_t>> remap;
+};
+
+Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
+  uint64_t total = 0;
+  for (const auto& p : pieces) total += p.points.size();
+  Welding w;
+  w.points.reserve(total);
+  w.firstPiece.reserve(total);
+  const uint64_t tableSize = std::bit_ceil(std::max<uint64_t>(2 * total, 16));
+  const uint64_t mask = tableSize - 1;
+  std::vector<uint32_t> table(tableSize, kEmpty);
+  for (uint32_t k = 0; k < pieces.size(); ++k) {
+    const auto& pts = pieces[k].points;
+    std::vector<uint32_t>& map = w.remap.emplace_back(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i) {
+      uint64_t slot = hashPoint(pts[i]) & mask;
+      for (;; slot = (slot + 1) & mask) {
+        uint32_t e = table[slot];
+        if (e == kEmpty) {
+          e = static_cast<uint32_t>(w.points.size());
+          table[slot] = e;
+          w.points.push_back(pts[i]);
+          w.firstPiece.push_back(k);
+          map[i] = e;
+          break;
+        }
+        if (w.firstPiece[e] != k && sameBits(w.points[e], pts[i])) {
+          map[i] = e;
+          break;
+        }
+      }
+    }
+  }
+  return w;
+}
+
+bool sameValue(float a, float b) {
+  return a == b || (a != a && b != b);
+}
+
+void weldFields(const std::string& source, const std::vector<mesh::UnstructuredMesh>& pieces,
+                const Welding& w, mesh::UnstructuredMesh& out) {
+  for (const mesh::Field& f0 : pieces[0].fields) {
+    mesh::Field f{f0.name, std::vector<std::vector<float>>(f0.numSteps())};
+    uint64_t disagree = 0;
+    for (auto& s : f.steps) s.resize(w.points.size());
+    for (uint32_t k = 0; k < pieces.size(); ++k) {
+      const mesh::Field* fk = pieces[k].findField(f0.name);
+      if (!fk || fk->numSteps() != f0.numSteps())
+        throw FileError(source, "piece '", pieces[k].source, "' ",
+                        fk ? concat("has ", fk->numSteps(), " time steps of field '", f0.name,
+                                    "', the first piece ", f0.numSteps())
+                           : concat("has no point field '", f0.name, "'"));
+      for (uint64_t s = 0; s < f.steps.size(); ++s) {
+        const auto& in = fk->steps[s];
+        auto& dst = f.steps[s];
+        for (size_t i = 0; i < in.size(); ++i) {
+          uint32_t j = w.remap[k][i];
+          if (w.firstPiece[j] == k)
+            dst[j] = in[i];
+          else if (!sameValue(dst[j], in[i]))
+            ++disagree;
+        }
+      }
+    }
+    if (disagree)
+      log::warning(source, ": field '", f.name, "' differs between pieces at ", disagree,
+                   " shared points (kept the lower piece's values)");
+    out.fields.push_back(std::move(f));
+  }
+  for (const auto& p : pieces)
+    if (p.fields.size() != pieces[0].fields.size())
+      throw FileError(source, "piece '", p.source, "' has ", p.fields.size(),
+                      " point fields, the first piece ", pieces[0].fields.size());
+}
+
+}  // namespace
+
+mesh::UnstructuredMesh weldPieces(const std::string& source,
+                                  std::vector<mesh::UnstructuredMesh> pieces) {
+  mesh::UnstructuredMesh out;
+  out.source = source;
+  if (pieces.empty()) return out;
+  uint64_t total = 0;
+  for (const auto& p : pieces) total += p.points.size();
+  if (total > 0xFFFFFFFFull)
+    throw FileError(source, "the pieces hold ", total, " points, more than 2^32 - 1");
+  Welding w = weldPoints(pieces);
+  weldFields(source, pieces, w, out);
+  for (auto& p : pieces) {  // no longer needed: free them before the cells are copied
+    std::vector<glm::dvec3>().swap(p.points);
+    std::vector<mesh::Field>().swap(p.fields);
+  }
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    uint64_t n = 0;
+    for (const auto& p : pieces) n += p.cells[t].size();
+    out.cells[t].reserve(n);
+    out.clusters[t].reserve(n / mesh::numVerts(mesh::kAllCellTypes[t]));
+    for (uint32_t k = 0; k < pieces.size(); ++k) {
+      for (uint32_t id : pieces[k].cells[t]) out.cells[t].push_back(w.remap[k][id]);
+      out.clusters[t].insert(out.clusters[t].end(), pieces[k].clusters[t].begin(),
+                             pieces[k].clusters[t].end());
+    }
+  }
+  for (auto& p : pieces) {
+    out.skipped.add(p.skipped);
+    out.invertedFixed += p.invertedFixed;
+    if (out.timeValues.empty()) out.timeValues = std::move(p.timeValues);
+  }
+  out.points = std::move(w.points);
+  return out;
+}
+
+}  // namespace sm::io

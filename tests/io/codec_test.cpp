@@ -1,0 +1,111 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <numeric>
+
+#include "common/error.h"
+#include "io/array_plan.h"
+#include "io/base64.h"
+#include "io/text_scan.h"
+#include "io/vtk_binary.h"
+
+namespace sm::io {
+namespace {
+
+std::string decode(std::string_view text, std::vector<size_t> reads) {
+  Base64Reader r(text);
+  std::string out;
+  for (size_t n : reads) {
+    std::string part(n, '\0');
+    if (!r.read(reinterpret_cast<uint8_t*>(part.data()), n)) return "<short>";
+    out += part;
+  }
+  return out;
+}
+
+TEST(Base64, DecodesJointAndSeparatelyPaddedStreams) {
+  EXPECT_EQ(decode("TWFu", {3}), "Man");
+  EXPECT_EQ(decode("TWE=", {2}), "Ma");
+  EXPECT_EQ(decode("TQ==", {1}), "M");
+  // VTK encodes a header and its data either as one stream or as two padded ones.
+  EXPECT_EQ(decode("TQ==TWE=TWFu", {1, 2, 3}), "MMaMan");
+  EXPECT_EQ(decode("TQ==TWE=TWFu", {6}), "MMaMan");
+  EXPECT_EQ(decode(" T W\nFu\tTWFu ", {2, 1, 1, 2}), "ManMan");
+  EXPECT_EQ(decode("TWFu", {4}), "<short>");
+  EXPECT_EQ(decode("TW<u", {3}), "<short>");
+  EXPECT_EQ(decode("T===", {1}), "<short>");
+}
+
+TEST(ZlibBlocks, RoundTripWithPartialAndFullLastBlocks) {
+  for (uint64_t bytes : {uint64_t(0), uint64_t(1), uint64_t(4096), uint64_t(10000)}) {
+    SCOPED_TRACE(bytes);
+    std::vector<uint8_t> raw(bytes);
+    std::iota(raw.begin(), raw.end(), uint8_t(7));
+    std::vector<uint8_t> enc = compressBlocks(
+        bytes, 1024, 1, 0,
+        [&](uint64_t b, uint64_t n, uint8_t* dst) { std::memcpy(dst, raw.data() + b, n); });
+    PayloadSource src = PayloadSource::raw(enc, 0);
+    BinaryFormat f{true, false, Compressor::ZLib, 0};
+    Payload p = readPayload(src, f, bytes, "t.vtu", "array");
+    ASSERT_TRUE(bytes == 0 || p.data);
+    EXPECT_TRUE(bytes == 0 || std::memcmp(p.data, raw.data(), bytes) == 0);
+    PayloadSource again = PayloadSource::raw(enc, 0);
+    EXPECT_THROW(readPayload(again, f, bytes + 1, "t.vtu", "array"), FileError);
+  }
+}
+
+TEST(ZlibBlocks, CorruptBlockIsAFileError) {
+  std::vector<uint8_t> raw(5000, 3);
+  std::vector<uint8_t> enc = compressBlocks(
+      raw.size(), 1024, 1, 0,
+      [&](uint64_t b, uint64_t n, uint8_t* dst) { std::memcpy(dst, raw.data() + b, n); });
+  enc[enc.size() - 3] ^= 0x55;
+  PayloadSource src = PayloadSource::raw(enc, 0);
+  try {
+    readPayload(src, {true, false, Compressor::ZLib, 0}, raw.size(), "t.vtu", "array 'x'");
+    FAIL();
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.vtu: array 'x': compressed block 4 is corrupt"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(TextScan, NumbersAsWritersWriteThem) {
+  double d = 0;
+  EXPECT_TRUE(parseNumber("+1.5", d));
+  EXPECT_EQ(d, 1.5);
+  EXPECT_TRUE(parseNumber("1.5D+03", d));  // Fortran
+  EXPECT_EQ(d, 1500.0);
+  EXPECT_TRUE(parseNumber("-nan", d));
+  EXPECT_TRUE(d != d);
+  EXPECT_FALSE(parseNumber("12x", d));
+  EXPECT_FALSE(parseNumber("", d));
+  int64_t i = 0;
+  EXPECT_FALSE(parseNumber("1.0", i));
+  EXPECT_TRUE(parseNumber("-42", i));
+  EXPECT_EQ(i, -42);
+  EXPECT_EQ(printable(std::string_view("a\0b\n", 4)), "a?b?");
+}
+
+TEST(ArrayPlan, TimeStepNames) {
+  EXPECT_EQ(splitStepName("p@t3").base, "p");
+  EXPECT_EQ(splitStepName("p@t3").step, 3u);
+  for (const char* plain : {"p", "p@t", "p@tx", "@t1", "p@t-1", "p@t+1", "p@t1x"})
+    EXPECT_FALSE(splitStepName(plain).step) << plain;
+}
+
+TEST(ArrayPlan, PlainAndSteppedNamesMayNotClash) {
+  ReadOptions o;
+  EXPECT_THROW(planFields("f.vtu", {{"p", 1, false}, {"p@t0", 1, false}}, o), FileError);
+  EXPECT_THROW(planFields("f.vtu", {{"p@t0", 1, false}, {"p@t0", 1, false}}, o), FileError);
+  EXPECT_THROW(planFields("f.vtu", {{"p@t0", 1, false}, {"p@t1", 3, false}}, o), FileError);
+  auto loads = planFields("f.vtu", {{"p@t1", 1, false}, {"id", 1, true}, {"p@t0", 1, false}}, o);
+  ASSERT_EQ(loads.size(), 2u);  // identifiers only when asked for
+  EXPECT_EQ(loads[0].array, 2u);
+  EXPECT_EQ(loads[0].step, 0u);
+  EXPECT_EQ(loads[1].step, 1u);
+}
+
+}  // namespace
+}  // namespace sm::io

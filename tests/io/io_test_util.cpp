@@ -1,0 +1,196 @@
+#include "io_test_util.h"
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "mesh/element_geometry.h"
+#include "mesh/mesh_builder.h"
+
+namespace sm::io::test {
+
+using mesh::CellType;
+
+std::string fixturePath(const std::string& file) {
+  return std::string(SHELLMARCH_IO_TEST_DATA) + "/" + file;
+}
+
+std::vector<uint32_t> cellIds(const mesh::UnstructuredMesh& m, CellType t, uint64_t i) {
+  const uint32_t nv = mesh::numVerts(t);
+  const auto& c = m.cells[mesh::typeIndex(t)];
+  return {c.begin() + i * nv, c.begin() + (i + 1) * nv};
+}
+
+void expectAllPositive(const mesh::UnstructuredMesh& m) {
+  for (CellType t : mesh::kAllCellTypes) {
+    const uint32_t nv = mesh::numVerts(t);
+    for (uint64_t i = 0; i < m.numCells(t); ++i)
+      ASSERT_GT(mesh::signedVolume(t, {m.cells[mesh::typeIndex(t)].data() + i * nv, nv}, m.points),
+                0.0)
+          << mesh::cellTypeName(t) << " " << i;
+  }
+}
+
+void expectFixtureGeometry(const mesh::UnstructuredMesh& m) {
+  ASSERT_EQ(m.numPoints(), 13u);
+  EXPECT_EQ(m.points[8], glm::dvec3(1.5, 0.5, 0.5));
+  EXPECT_EQ(m.points[12], glm::dvec3(0.5, -0.5, 0.5));
+  ASSERT_EQ(m.numCells(CellType::Hex), 1u);
+  ASSERT_EQ(m.numCells(CellType::Pyramid), 1u);
+  ASSERT_EQ(m.numCells(CellType::Wedge), 1u);
+  ASSERT_EQ(m.numCells(CellType::Tet), 3u);
+  EXPECT_EQ(cellIds(m, CellType::Hex, 0), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(cellIds(m, CellType::Pyramid, 0), (std::vector<uint32_t>{1, 2, 6, 5, 8}));
+  EXPECT_EQ(cellIds(m, CellType::Wedge, 0), (std::vector<uint32_t>{3, 7, 9, 2, 6, 10}));
+  EXPECT_EQ(cellIds(m, CellType::Tet, 0), (std::vector<uint32_t>{0, 4, 3, 11}));
+  EXPECT_EQ(cellIds(m, CellType::Tet, 1), (std::vector<uint32_t>{0, 1, 4, 12}));  // was 0 4 1 12
+  EXPECT_EQ(cellIds(m, CellType::Tet, 2),
+            (std::vector<uint32_t>{0, 1, 3, 4}));  // quadratic corners
+  EXPECT_EQ(m.invertedFixed, 1u);
+  EXPECT_EQ(m.skipped.surface, 1u);
+  EXPECT_EQ(m.skipped.lineOrVertex, 1u);
+  EXPECT_EQ(m.skipped.quadraticReduced, 1u);
+  EXPECT_EQ(m.skipped.polyhedra + m.skipped.other, 0u);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Hex)], (std::vector<int32_t>{0}));
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Pyramid)], (std::vector<int32_t>{1}));
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Wedge)], (std::vector<int32_t>{1}));
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Tet)], (std::vector<int32_t>{2, 2, 3}));
+  EXPECT_EQ(m.numClusters(), 4);
+}
+
+void expectFixtureMesh(const mesh::UnstructuredMesh& m) {
+  expectFixtureGeometry(m);
+  ASSERT_EQ(m.fields.size(), 4u);
+  const mesh::Field* p = m.findField("pressure");
+  const mesh::Field* v = m.findField("velocity");
+  const mesh::Field* t = m.findField("temp");
+  const mesh::Field* c = m.findField("count");
+  ASSERT_TRUE(p && v && t && c);
+  ASSERT_EQ(p->numSteps(), 1u);
+  ASSERT_EQ(t->numSteps(), 3u);
+  for (int i = 0; i < 13; ++i) {
+    EXPECT_FLOAT_EQ(p->steps[0][i], 1.0f + 0.5f * i);
+    EXPECT_FLOAT_EQ(v->steps[0][i], float(std::sqrt(6.0) * i));
+    EXPECT_FLOAT_EQ(c->steps[0][i], 3.0f * i);
+    for (int s = 0; s < 3; ++s) EXPECT_FLOAT_EQ(t->steps[s][i], float(i + 100 * s));
+  }
+  EXPECT_EQ(m.timeValues, (std::vector<double>{0.0, 0.25, 1.0}));
+}
+
+mesh::UnstructuredMesh makeTestMesh(int n, int clusters) {
+  mesh::MeshBuilder b("test mesh");
+  std::vector<glm::dvec3> pts;
+  auto grid = [n](int i, int j, int k) { return int64_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+        pts.push_back(glm::dvec3(i, j, k) * 0.1 + glm::dvec3(1e3, -2, 0.5));
+  struct Cube {
+    int i, j, k;
+  };
+  std::vector<Cube> withCentre;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if ((i + j + k) % 4 == 3) {
+          withCentre.push_back({i, j, k});
+          pts.push_back((glm::dvec3(i, j, k) + 0.5) * 0.1 + glm::dvec3(1e3, -2, 0.5));
+        }
+  b.setPoints(pts);
+  uint64_t fileCell = 0, centre = uint64_t(n + 1) * (n + 1) * (n + 1);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int64_t v[8] = {grid(i, j, k),
+                              grid(i + 1, j, k),
+                              grid(i + 1, j + 1, k),
+                              grid(i, j + 1, k),
+                              grid(i, j, k + 1),
+                              grid(i + 1, j, k + 1),
+                              grid(i + 1, j + 1, k + 1),
+                              grid(i, j + 1, k + 1)};
+        const int32_t cl = int32_t(int64_t(i) * clusters / n);
+        auto add = [&](CellType t, std::initializer_list<int> local, int64_t extra = -1) {
+          int64_t ids[8];
+          size_t c = 0;
+          for (int l : local) ids[c++] = v[l];
+          if (extra >= 0) ids[c++] = extra;
+          b.addCell(t, {ids, c}, fileCell++, cl);
+        };
+        switch ((i + j + k) % 4) {
+          case 0:
+            add(CellType::Hex, {0, 1, 2, 3, 4, 5, 6, 7});
+            break;
+          case 1:
+            add(CellType::Wedge, {0, 1, 2, 4, 5, 6});
+            add(CellType::Wedge, {0, 2, 3, 4, 6, 7});
+            break;
+          case 2:
+            for (auto t : {std::initializer_list<int>{0, 1, 2, 6},
+                           {0, 2, 3, 6},
+                           {0, 3, 7, 6},
+                           {0, 7, 4, 6},
+                           {0, 4, 5, 6},
+                           {0, 5, 1, 6}})
+              add(CellType::Tet, t);
+            break;
+          default: {
+            const int64_t c = int64_t(centre++);
+            for (auto f : {std::initializer_list<int>{0, 1, 2, 3},
+                           {4, 5, 6, 7},
+                           {0, 1, 5, 4},
+                           {1, 2, 6, 5},
+                           {2, 3, 7, 6},
+                           {3, 0, 4, 7}})
+              add(CellType::Pyramid, f, c);
+          }
+        }
+      }
+  std::vector<float> f(pts.size()), g0(pts.size()), g1(pts.size());
+  for (size_t p = 0; p < pts.size(); ++p) {
+    f[p] = float(pts[p].x - 1e3 + 2 * pts[p].y);
+    g0[p] = float(p % 97);
+    g1[p] = float(p) * 0.5f;
+  }
+  b.addFieldStep("f", 0, f);
+  b.addFieldStep("g", 0, g0);
+  b.addFieldStep("g", 1, g1);
+  b.setTimeValues({0.0, 1.0});
+  return b.finish();
+}
+
+std::vector<std::vector<double>> canonicalCells(const mesh::UnstructuredMesh& m) {
+  std::vector<std::vector<double>> out;
+  for (CellType t : mesh::kAllCellTypes) {
+    const uint32_t nv = mesh::numVerts(t);
+    for (uint64_t c = 0; c < m.numCells(t); ++c) {
+      std::vector<double> r = {double(mesh::typeIndex(t)),
+                               double(m.clusters[mesh::typeIndex(t)][c])};
+      for (uint32_t k = 0; k < nv; ++k) {
+        uint32_t id = m.cells[mesh::typeIndex(t)][c * nv + k];
+        r.insert(r.end(), {m.points[id].x, m.points[id].y, m.points[id].z});
+        for (const auto& f : m.fields)
+          for (const auto& s : f.steps) r.push_back(s[id]);
+      }
+      out.push_back(std::move(r));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<uint8_t> readBytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+}  // namespace sm::io::test

@@ -1,0 +1,69 @@
+// Helpers for the io tests: fixture paths, the expectations every encoding of the fixture mesh
+// must meet (tests/io/data/make_fixtures.py describes that mesh), and small file utilities.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.h"
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::io::test {
+
+// tests/io/data/<file>.
+std::string fixturePath(const std::string& file);
+
+// The fixture mesh: 13 points, a hexahedron, pyramid, wedge and three tetrahedra (one written
+// inverted, one quadratic), a skipped triangle and vertex, clusters 0..3, fields pressure,
+// velocity, temp (3 steps), count, time values 0, 0.25, 1.
+void expectFixtureMesh(const mesh::UnstructuredMesh& m);
+void expectFixtureGeometry(const mesh::UnstructuredMesh& m);  // points, cells, clusters only
+
+// A synthetic mesh of n^3 cube cells, each a hexahedron, two wedges, six tetrahedra or six
+// pyramids around an extra centre point (all four types), in `clusters` slabs along x, with fields
+// "f" (1 step) and "g" (2 steps) and time values 0 and 1.
+mesh::UnstructuredMesh makeTestMesh(int n, int clusters);
+
+// Cells as sortable records (type, cluster, vertex coordinates, field values at the vertices), so
+// that meshes equal up to point and cell order compare equal.
+std::vector<std::vector<double>> canonicalCells(const mesh::UnstructuredMesh& m);
+
+// Every element has positive volume (the builder oriented them all).
+void expectAllPositive(const mesh::UnstructuredMesh& m);
+
+// Vertex ids of element `i` of type t.
+std::vector<uint32_t> cellIds(const mesh::UnstructuredMesh& m, mesh::CellType t, uint64_t i);
+
+std::vector<uint8_t> readBytes(const std::string& path);
+void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes);
+void writeText(const std::string& path, const std::string& text);
+
+// The message of the sm::FileError that fn throws; fails the test if it throws nothing or
+// something else.
+template <class Fn>
+std::string fileErrorOf(Fn&& fn);
+
+}  // namespace sm::io::test
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+
+namespace sm::io::test {
+
+template <class Fn>
+std::string fileErrorOf(Fn&& fn) {
+  try {
+    fn();
+  } catch (const FileError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected sm::FileError, got: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected sm::FileError, nothing thrown";
+  return {};
+}
+
+}  // namespace sm::io::test

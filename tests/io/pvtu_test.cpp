@@ -1,0 +1,111 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "io/mesh_io.h"
+#include "io/weld.h"
+#include "io_test_util.h"
+#include "support/test_support.h"
+
+namespace sm::io {
+namespace {
+
+using mesh::CellType;
+using test::cellIds;
+using test::fileErrorOf;
+using test::fixturePath;
+
+std::vector<uint32_t> sorted(std::vector<uint32_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+std::vector<uint32_t> pick(const std::vector<uint32_t>& ids, std::initializer_list<int> at) {
+  std::vector<uint32_t> r;
+  for (int i : at) r.push_back(ids[i]);
+  return sorted(r);
+}
+
+// weld.pvtu: piece 0 the hexahedron, piece 1 the pyramid and wedge on two of its faces, piece 2
+// a tetrahedron on a third face; every piece has its own copy of the points it uses.
+TEST(PvtuReader, WeldsPiecesSoThatSharedFacesShareVertexIds) {
+  EXPECT_EQ(countPieces(fixturePath("weld.pvtu")), 3);
+  mesh::UnstructuredMesh m = readMesh(fixturePath("weld.pvtu"));
+  EXPECT_EQ(m.numPoints(), 12u);  // 8 + 9 + 4 copies of 12 distinct points
+  ASSERT_EQ(m.numCells(), 4u);
+  const auto hex = cellIds(m, CellType::Hex, 0);
+  const auto pyr = cellIds(m, CellType::Pyramid, 0);
+  const auto wedge = cellIds(m, CellType::Wedge, 0);
+  const auto tet = cellIds(m, CellType::Tet, 0);
+  EXPECT_EQ(pick(pyr, {0, 1, 2, 3}), pick(hex, {1, 2, 6, 5}));    // the +x face
+  EXPECT_EQ(pick(wedge, {0, 1, 3, 4}), pick(hex, {3, 7, 2, 6}));  // the +y face
+  EXPECT_EQ(pick(tet, {0, 1, 2}), pick(hex, {0, 4, 3}));          // a triangle on the -x face
+  EXPECT_EQ(m.points[pyr[4]], glm::dvec3(1.5, 0.5, 0.5));
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Hex)][0], 0);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Pyramid)][0], 1);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Wedge)][0], 1);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Tet)][0], 2);
+  ASSERT_EQ(m.fields.size(), 1u);
+  test::expectAllPositive(m);
+}
+
+TEST(PvtuReader, WeldedFieldValuesFollowThePoints) {
+  mesh::UnstructuredMesh m = readMesh(fixturePath("weld.pvtu"));
+  const glm::dvec3 original[12] = {{0, 0, 0},       {1, 0, 0},     {1, 1, 0},     {0, 1, 0},
+                                   {0, 0, 1},       {1, 0, 1},     {1, 1, 1},     {0, 1, 1},
+                                   {1.5, 0.5, 0.5}, {0, 1.5, 0.5}, {1, 1.5, 0.5}, {-0.5, 0.5, 0.5}};
+  for (uint32_t p = 0; p < m.numPoints(); ++p) {
+    int i = int(std::find(original, original + 12, m.points[p]) - original);
+    ASSERT_LT(i, 12);
+    EXPECT_EQ(m.fields[0].steps[0][p], 1.0f + 0.5f * i);
+  }
+}
+
+TEST(PvtuReader, ReadsASubsetKeepingGlobalPieceNumbers) {
+  ReadOptions o;
+  o.pieces = {2, 1};
+  mesh::UnstructuredMesh m = readMesh(fixturePath("weld.pvtu"), o);
+  EXPECT_EQ(m.numPoints(), 12u);  // 9 + 4, sharing one point
+  EXPECT_EQ(m.numCells(CellType::Hex), 0u);
+  EXPECT_EQ(m.numCells(), 3u);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Tet)][0], 2);
+  EXPECT_EQ(m.numClusters(), 3);
+  o.pieces = {2};
+  m = readMesh(fixturePath("weld.pvtu"), o);
+  EXPECT_EQ(m.numPoints(), 4u);
+  EXPECT_EQ(m.numCells(CellType::Tet), 1u);
+  EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Tet)][0], 2);
+}
+
+TEST(PvtuReader, BadPieceNumbersAreErrors) {
+  ReadOptions o;
+  o.pieces = {3};
+  std::string msg = fileErrorOf([&] { readMesh(fixturePath("weld.pvtu"), o); });
+  EXPECT_NE(msg.find("weld.pvtu"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no piece 3"), std::string::npos) << msg;
+  o.pieces = {1, 1};
+  EXPECT_NE(fileErrorOf([&] { readMesh(fixturePath("weld.pvtu"), o); }).find("twice"),
+            std::string::npos);
+}
+
+TEST(PvtuReader, MissingPieceFileIsNamed) {
+  const std::string dir = sm::test::outputDir("PvtuReader.MissingPiece");
+  test::writeText(dir + "/m.pvtu",
+                  "<?xml version=\"1.0\"?><VTKFile type=\"PUnstructuredGrid\" version=\"1.0\">"
+                  "<PUnstructuredGrid><Piece Source=\"m/m_0.vtu\"/></PUnstructuredGrid></VTKFile>");
+  std::string msg = fileErrorOf([&] { readMesh(dir + "/m.pvtu"); });
+  EXPECT_NE(msg.find("m/m_0.vtu"), std::string::npos) << msg;
+  EXPECT_EQ(countPieces(dir + "/m.pvtu"), 1);
+}
+
+TEST(Weld, MergesAcrossPiecesOnlyAndOnlyBitwiseEqualPoints) {
+  mesh::UnstructuredMesh a, b;
+  a.points = {{0, 0, 0}, {0, 0, 0}, {1, 0, 0}};  // a duplicate inside one piece stays two points
+  b.points = {{1, 0, 0}, {0, 0, 0}, {-0.0, 0, 0}, {1, 1e-300, 0}};
+  mesh::UnstructuredMesh w = weldPieces("w", {a, b});
+  // b's (1,0,0) and (0,0,0) join a's; -0.0 and 1e-300 differ bitwise and stay apart.
+  EXPECT_EQ(w.numPoints(), 5u);
+}
+
+}  // namespace
+}  // namespace sm::io

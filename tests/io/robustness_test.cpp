@@ -1,0 +1,251 @@
+// Other people's files: truncated, corrupted, or declaring absurd sizes. Every reader must answer
+// with a mesh or one sm::FileError naming the input, never crash, hang, or allocate what the file
+// merely claims. A replaced global operator new (plain and aligned) enforces the last point: while
+// a limit is set, a larger request throws std::bad_alloc, which these tests count as a failure.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <new>
+#include <random>
+#include <string>
+
+#include "common/log.h"
+#include "io/mesh_io.h"
+#include "io_test_util.h"
+#include "support/test_support.h"
+
+namespace {
+std::atomic<size_t> gAllocationLimit{SIZE_MAX};
+
+void* allocate(std::size_t n, std::size_t align = 0) {
+  if (n > gAllocationLimit.load(std::memory_order_relaxed)) throw std::bad_alloc();
+  void* p = nullptr;
+  if (align > alignof(std::max_align_t)) {
+    if (posix_memalign(&p, align, n ? n : 1) != 0) p = nullptr;
+  } else {
+    p = std::malloc(n ? n : 1);
+  }
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+}  // namespace
+
+// clang-format off
+void* operator new(std::size_t n) { return allocate(n); }
+void* operator new[](std::size_t n) { return allocate(n); }
+void* operator new(std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+// clang-format on
+
+namespace sm::io {
+namespace {
+
+using test::fixturePath;
+
+// Quiet readers and a 32 MiB cap on any single allocation for the scope of a test.
+class Guard {
+ public:
+  Guard() : level_(log::level()) {
+    log::setLevel(log::Level::Quiet);
+    gAllocationLimit = 32u << 20;
+  }
+  ~Guard() {
+    gAllocationLimit = SIZE_MAX;
+    log::setLevel(level_);
+  }
+
+ private:
+  log::Level level_;
+};
+
+// Reads bytes as `name`; returns "" for a mesh, the message for a FileError; fails otherwise.
+std::string outcome(const std::vector<uint8_t>& bytes, const std::string& name) {
+  try {
+    readMeshFromMemory(bytes, name);
+    return "";
+  } catch (const FileError& e) {
+    std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(name, 0), 0u) << "the message must start with the input's name: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
+    return msg.empty() ? "?" : msg;
+  } catch (const std::bad_alloc&) {
+    ADD_FAILURE() << name << ": allocation beyond the limit (the reader believed a size)";
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << name << ": not a FileError: " << e.what();
+  }
+  return "?";
+}
+
+const char* kFiles[] = {"mesh_ascii.vtu",
+                        "mesh_binary_none_h32.vtu",
+                        "mesh_binary_zlib_h64.vtu",
+                        "mesh_appended_raw_none_h64.vtu",
+                        "mesh_appended_raw_zlib_h32.vtu",
+                        "mesh_appended_b64_zlib_h64.vtu",
+                        "mesh_appended_b64_none_h32.vtu",
+                        "mesh_binary_zlib_bigendian.vtu",
+                        "mesh_int_types.vtu",
+                        "mesh_v42_ascii.vtk",
+                        "mesh_v42_binary.vtk",
+                        "mesh_v51_ascii.vtk",
+                        "mesh_v51_binary.vtk"};
+
+TEST(Robustness, TruncatedFilesAreErrorsNotCrashes) {
+  Guard guard;
+  for (const char* f : kFiles) {
+    const std::vector<uint8_t> full = test::readBytes(fixturePath(f));
+    ASSERT_FALSE(full.empty()) << f;
+    int errors = 0;
+    for (size_t cut = 0; cut < full.size(); cut += 1 + full.size() / 97) {
+      std::vector<uint8_t> part(full.begin(), full.begin() + cut);
+      errors += !outcome(part, f).empty();
+    }
+    // Most cuts lose data. Some leave a valid shorter file: inside closing tags, or (legacy)
+    // between sections, which may legally be absent.
+    EXPECT_GT(errors, 60) << f;
+  }
+}
+
+TEST(Robustness, FlippedBytesAreErrorsOrMeshes) {
+  Guard guard;
+  std::mt19937 rng(12345);
+  for (const char* f : kFiles) {
+    const std::vector<uint8_t> full = test::readBytes(fixturePath(f));
+    for (int trial = 0; trial < 300; ++trial) {
+      std::vector<uint8_t> bytes = full;
+      for (int k = 0; k < 1 + trial % 3; ++k)
+        bytes[rng() % bytes.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
+      outcome(bytes, f);
+    }
+  }
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+std::vector<uint8_t> bytesOf(const std::string& s) {
+  return {s.begin(), s.end()};
+}
+
+std::string fixtureText(const char* f) {
+  std::vector<uint8_t> b = test::readBytes(fixturePath(f));
+  return {b.begin(), b.end()};
+}
+
+void expectError(const std::string& text, const std::string& name, const std::string& part) {
+  std::string msg = outcome(bytesOf(text), name);
+  EXPECT_NE(msg.find(part), std::string::npos) << "expected '" << part << "' in: " << msg;
+}
+
+TEST(Robustness, AbsurdSizesInVtuAreRejectedBeforeAllocating) {
+  Guard guard;
+  const std::string ascii = fixtureText("mesh_ascii.vtu");
+  expectError(replaced(ascii, "NumberOfCells=\"8\"", "NumberOfCells=\"1099511627776\""), "a.vtu",
+              "declares 1099511627776 values");
+  expectError(replaced(ascii, "NumberOfPoints=\"13\"", "NumberOfPoints=\"1152921504606846975\""),
+              "a.vtu", "impossible size");
+  expectError(replaced(ascii, "NumberOfPoints=\"13\"", "NumberOfPoints=\"-5\""), "a.vtu",
+              "not a count");
+  const std::string raw = fixtureText("mesh_appended_raw_none_h64.vtu");
+  expectError(replaced(raw, "NumberOfPoints=\"13\"", "NumberOfPoints=\"1099511627776\""), "r.vtu",
+              "holds 312 bytes, expected 26388279066624");
+  expectError(replaced(raw, "NumberOfCells=\"8\"", "NumberOfCells=\"100000000\""), "r.vtu",
+              "expected 800000000");
+  // An appended array whose header claims more bytes than the file has.
+  std::string huge = raw;
+  const size_t data = huge.find('_', huge.find("<AppendedData")) + 1;
+  const uint64_t claim = uint64_t(1) << 40;
+  std::memcpy(&huge[data], &claim, 8);  // first array: the field data TimeValues
+  expectError(huge, "r.vtu", "holds 1099511627776 bytes, expected 24");
+  const std::string zlib = fixtureText("mesh_appended_raw_zlib_h64.vtu");
+  std::string blocks = zlib;
+  const size_t zdata = blocks.find('_', blocks.find("<AppendedData")) + 1;
+  std::memcpy(&blocks[zdata], &claim, 8);  // number of blocks
+  expectError(blocks, "z.vtu", "more than the data can hold");
+}
+
+TEST(Robustness, BrokenStructureInVtu) {
+  Guard guard;
+  const std::string ascii = fixtureText("mesh_ascii.vtu");
+  expectError(replaced(ascii, "<VTKFile", "<VTKFil"), "a.vtu", "not valid XML");
+  expectError(replaced(ascii, "type=\"UnstructuredGrid\"", "type=\"PolyData\""), "a.vtu",
+              "'PolyData'");
+  expectError(
+      replaced(ascii, "type=\"Float64\" Name=\"Points\"", "type=\"Float128\" Name=\"Points\""),
+      "a.vtu", "unsupported array type 'Float128'");
+  expectError(replaced(ascii, "Name=\"Points\" NumberOfComponents=\"3\"",
+                       "Name=\"Points\" NumberOfComponents=\"2\""),
+              "a.vtu", "has 2 components, expected 3");
+  expectError(replaced(ascii, "8 13 19", "8 3 19"), "a.vtu", "smaller than the one before");
+  expectError(replaced(ascii, "0.5 -0.5 0.5", "0.5 -0.5 nan"), "a.vtu", "non-finite");
+  expectError(replaced(ascii, "0.5 -0.5 0.5", "0.5 -0.5 0.5x"), "a.vtu",
+              "('0.5x') is not a number");
+  expectError(replaced(ascii, "format=\"ascii\"", "format=\"appended\""), "a.vtu",
+              "refers to appended data, but there is none");
+  // A connectivity id beyond the points.
+  expectError(replaced(ascii, "6 7 1 2 6 5", "6 70 1 2 6 5"), "a.vtu", "refers to point 70");
+  const std::string b64 = fixtureText("mesh_binary_zlib_h32.vtu");
+  expectError(
+      replaced(b64, "compressor=\"vtkZLibDataCompressor\"", "compressor=\"vtkZstdDataCompressor\""),
+      "b.vtu", "unknown compressor");
+  expectError(replaced(b64, "header_type=\"UInt32\"", "header_type=\"UInt16\""), "b.vtu",
+              "header_type");
+}
+
+TEST(Robustness, AbsurdSizesInLegacyVtk) {
+  Guard guard;
+  const std::string ascii = fixtureText("mesh_v42_ascii.vtk");
+  expectError(replaced(ascii, "POINTS 13 double", "POINTS 1099511627776 double"), "a.vtk",
+              "too short");
+  expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 1099511627776"), "a.vtk", "too short");
+  expectError(replaced(ascii, "CELL_TYPES 8", "CELL_TYPES 9"), "a.vtk", "");
+  expectError(replaced(ascii, "4 0 4 1 12", "4 0 4 1 13"), "a.vtk", "refers to point 13");
+  expectError(replaced(ascii, "CELLS 8 49", "CELLS 9 49"), "a.vtk",
+              "CELL_DATA 8 does not match the 9 cells");
+  expectError(replaced(ascii, "POINT_DATA 13", "POINT_DATA 12"), "a.vtk",
+              "does not match the 13 points");
+  const std::string bin = fixtureText("mesh_v51_binary.vtk");
+  expectError(replaced(bin, "POINTS 13 double", "POINTS 4611686018427387904 double"), "b.vtk",
+              "not a count");
+  expectError(replaced(bin, "POINTS 13 double", "POINTS 1125899906842624 double"), "b.vtk",
+              "needs");
+  expectError(replaced(bin, "CELLS 9 41", "CELLS 1000000000 41"), "b.vtk", "file ends");
+  expectError(replaced(bin, "vtktypeint64", "vtktypeint128"), "b.vtk", "unknown data type");
+}
+
+TEST(Robustness, AbsurdSizesInUgrid) {
+  Guard guard;
+  expectError("1099511627776 0 0 1 0 0 0\n0 0 0\n", "a.ugrid", "declares 1099511627776 nodes");
+  expectError("4 0 0 1 0 0 0\n0 0 0 1 0 0 0 1 0 0 0 1\n1 2 3 5\n", "a.ugrid", "refers to node 5");
+  expectError("4 0 0 1 0 0 0\n0 0 0 1 0 0 0 1 0 0 0 1\n1 2 3\n", "a.ugrid", "ends after 3 of 4");
+  std::vector<uint8_t> bin(28, 0);
+  const int32_t counts[7] = {1 << 30, 0, 0, 1 << 30, 0, 0, 0};
+  std::memcpy(bin.data(), counts, 28);
+  std::string msg = outcome(bin, "b.lb8.ugrid");
+  EXPECT_NE(msg.find("impossible for a file of 28 bytes"), std::string::npos) << msg;
+  const int32_t fits[7] = {4, 0, 0, 1, 0, 0, 0};  // counts fit, data missing
+  std::memcpy(bin.data(), fits, 28);
+  msg = outcome(bin, "b.lb8.ugrid");
+  EXPECT_NE(msg.find("need 112 bytes; the file has 0"), std::string::npos) << msg;
+  EXPECT_NE(outcome({}, "e.lb8.ugrid").find("too short"), std::string::npos);
+  EXPECT_NE(outcome({}, "e.vtu").find("e.vtu"), std::string::npos);
+  EXPECT_NE(outcome({}, "e.vtk").find("not a legacy VTK file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sm::io

@@ -1,0 +1,175 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "io/mesh_io.h"
+#include "io_test_util.h"
+#include "support/test_support.h"
+
+namespace sm::io {
+namespace {
+
+using mesh::CellType;
+using test::cellIds;
+using test::fileErrorOf;
+using test::fixturePath;
+
+// Every encoding VTK's writer produces, and a hand-made file, hold the same mesh.
+class VtuEncoding : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(VtuEncoding, ReadsTheFixtureMesh) {
+  mesh::UnstructuredMesh m = readMesh(fixturePath(GetParam()));
+  test::expectFixtureMesh(m);
+  test::expectAllPositive(m);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllEncodings, VtuEncoding,
+    ::testing::Values("mesh_ascii.vtu", "mesh_binary_none_h32.vtu", "mesh_binary_none_h64.vtu",
+                      "mesh_binary_zlib_h32.vtu", "mesh_binary_zlib_h64.vtu",
+                      "mesh_appended_raw_none_h32.vtu", "mesh_appended_raw_none_h64.vtu",
+                      "mesh_appended_raw_zlib_h32.vtu", "mesh_appended_raw_zlib_h64.vtu",
+                      "mesh_appended_b64_none_h32.vtu", "mesh_appended_b64_none_h64.vtu",
+                      "mesh_appended_b64_zlib_h32.vtu", "mesh_appended_b64_zlib_h64.vtu",
+                      "mesh_binary_zlib_id32.vtu", "mesh_appended_raw_none_id32.vtu",
+                      "mesh_appended_raw_none_bigendian.vtu", "mesh_binary_zlib_bigendian.vtu",
+                      "mesh_appended_raw_zlib_float32.vtu"),
+    [](const auto& info) {
+      std::string n = info.param;
+      return n.substr(5, n.size() - 9);  // "mesh_" ... ".vtu"
+    });
+
+TEST(VtuReader, EveryIntegerTypeAndANamedClusterArray) {
+  // UInt16 connectivity, UInt32 offsets, Int8 types; Int16, UInt64 (2 components), Int8 fields;
+  // cluster ids in a UInt8 cell array "part".
+  ReadOptions o;
+  o.clusterArray = "part";
+  mesh::UnstructuredMesh m = readMesh(fixturePath("mesh_int_types.vtu"), o);
+  test::expectFixtureGeometry(m);
+  const mesh::Field* p = m.findField("pressure");
+  const mesh::Field* big = m.findField("big");
+  const mesh::Field* small = m.findField("small");
+  ASSERT_TRUE(p && big && small);
+  for (int i = 0; i < 13; ++i) {
+    EXPECT_EQ(p->steps[0][i], 10.0f * i);
+    EXPECT_FLOAT_EQ(big->steps[0][i], float(std::sqrt(2.0) * i));
+    EXPECT_EQ(small->steps[0][i], -1.0f * i);
+  }
+}
+
+TEST(VtuReader, WithoutAClusterArrayEveryCellIsClusterZero) {
+  // mesh_int_types.vtu names its cluster array "part", which is not a default name.
+  mesh::UnstructuredMesh m = readMesh(fixturePath("mesh_int_types.vtu"));
+  EXPECT_EQ(m.numClusters(), 1);
+}
+
+TEST(VtuReader, SelectsFieldsComponentsAndSteps) {
+  ReadOptions o;
+  o.fields = {"velocity[1]", "temp", "velocity"};
+  mesh::UnstructuredMesh m = readMesh(fixturePath("mesh_appended_raw_zlib_h64.vtu"), o);
+  ASSERT_EQ(m.fields.size(), 3u);
+  EXPECT_EQ(m.fields[0].name, "velocity[1]");
+  EXPECT_EQ(m.fields[1].name, "temp");
+  EXPECT_EQ(m.fields[1].numSteps(), 3u);
+  EXPECT_EQ(m.fields[2].name, "velocity");
+  EXPECT_EQ(m.fields[0].steps[0][5], 10.0f);
+  EXPECT_FLOAT_EQ(m.fields[2].steps[0][5], float(5 * std::sqrt(6.0)));
+  EXPECT_EQ(m.fields[1].steps[2][5], 205.0f);
+}
+
+TEST(VtuReader, NoFieldsWhenNotAsked) {
+  ReadOptions o;
+  o.loadFields = false;
+  mesh::UnstructuredMesh m = readMesh(fixturePath("mesh_binary_zlib_h32.vtu"), o);
+  EXPECT_TRUE(m.fields.empty());
+  test::expectFixtureGeometry(m);
+}
+
+TEST(VtuReader, UnknownFieldListsTheArraysTheFileHas) {
+  ReadOptions o;
+  o.fields = {"density"};
+  std::string msg = fileErrorOf([&] { readMesh(fixturePath("mesh_ascii.vtu"), o); });
+  EXPECT_NE(msg.find("mesh_ascii.vtu"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'density'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pressure"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("velocity (3 components)"), std::string::npos) << msg;
+  o.fields = {"velocity[3]"};
+  msg = fileErrorOf([&] { readMesh(fixturePath("mesh_ascii.vtu"), o); });
+  EXPECT_NE(msg.find("3 components"), std::string::npos) << msg;
+}
+
+TEST(VtuReader, UnknownClusterArrayListsTheCellArrays) {
+  ReadOptions o;
+  o.clusterArray = "rank";
+  std::string msg = fileErrorOf([&] { readMesh(fixturePath("mesh_ascii.vtu"), o); });
+  EXPECT_NE(msg.find("'rank'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("cluster, quality"), std::string::npos) << msg;
+}
+
+TEST(VtuReader, Lz4AndLzmaAreRejectedByName) {
+  for (const char* f : {"mesh_lz4.vtu", "mesh_lzma.vtu"}) {
+    std::string msg = fileErrorOf([&] { readMesh(fixturePath(f)); });
+    EXPECT_NE(msg.find(f), std::string::npos) << msg;
+    EXPECT_NE(msg.find(std::string(f) == "mesh_lz4.vtu" ? "vtkLZ4DataCompressor"
+                                                        : "vtkLZMADataCompressor"),
+              std::string::npos)
+        << msg;
+  }
+}
+
+TEST(VtuReader, SharedSingleCellFiles) {
+  // Appended base64 + zlib, written by VTK; one cell each.
+  struct Case {
+    const char* file;
+    CellType type;
+    std::vector<uint32_t> ids;  // after orientation
+    uint64_t inverted;
+  };
+  const Case cases[] = {{"Tetra.vtu", CellType::Tet, {0, 1, 2, 3}, 0},
+                        {"Pyramid.vtu", CellType::Pyramid, {0, 1, 2, 3, 4}, 0},
+                        {"Wedge.vtu", CellType::Wedge, {0, 2, 1, 3, 5, 4}, 1},
+                        {"Hexahedron.vtu", CellType::Hex, {0, 1, 2, 3, 4, 5, 6, 7}, 0}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    mesh::UnstructuredMesh m = readMesh(sm::test::sharedDataPath(c.file));
+    ASSERT_EQ(m.numPoints(), mesh::numVerts(c.type));
+    ASSERT_EQ(m.numCells(), 1u);
+    EXPECT_EQ(cellIds(m, c.type, 0), c.ids);
+    EXPECT_EQ(m.invertedFixed, c.inverted);
+    EXPECT_EQ(m.points[0], glm::dvec3(0, 0, 0));
+    EXPECT_EQ(m.points[1], glm::dvec3(1, 0, 0));
+    EXPECT_EQ(m.bounds().hi, glm::dvec3(1, 1, 1));
+    EXPECT_TRUE(m.fields.empty());
+  }
+}
+
+TEST(VtuReader, SharedCanFile) {
+  // Appended raw, UInt64 header, Float32 points, Int64 connectivity, Exodus field data.
+  mesh::UnstructuredMesh m = readMesh(sm::test::sharedDataPath("can.vtu"));
+  ASSERT_EQ(m.numPoints(), 6724u);
+  ASSERT_EQ(m.numCells(CellType::Hex), 4800u);
+  EXPECT_EQ(m.numCells(), 4800u);
+  EXPECT_EQ(m.numClusters(), 1);
+  EXPECT_EQ(m.points[100], glm::dvec3(double(2.198955535888672f), double(-2.8723723888397217f),
+                                      double(-14.293645858764648f)));
+  EXPECT_EQ(cellIds(m, CellType::Hex, 1234),
+            (std::vector<uint32_t>{2530, 2612, 2613, 2531, 2528, 2610, 2611, 2529}));
+  test::expectAllPositive(m);
+  // Vector fields load as magnitudes; the id arrays (GlobalIds, PedigreeIds) are left out.
+  ASSERT_EQ(m.fields.size(), 3u);
+  EXPECT_EQ(m.fields[0].name, "DISPL");
+  EXPECT_EQ(m.fields[1].name, "VEL");
+  EXPECT_EQ(m.fields[2].name, "ACCL");
+  const double vx = -2702.10986328125, vy = -3059.397705078125, vz = 1261.6085205078125;
+  EXPECT_FLOAT_EQ(m.fields[1].steps[0][100], float(std::sqrt(vx * vx + vy * vy + vz * vz)));
+  EXPECT_TRUE(m.timeValues.empty());
+  ReadOptions o;
+  o.fields = {"VEL[2]", "GlobalNodeId"};
+  m = readMesh(sm::test::sharedDataPath("can.vtu"), o);
+  ASSERT_EQ(m.fields.size(), 2u);
+  EXPECT_EQ(m.fields[0].steps[0][100], float(vz));
+  EXPECT_EQ(m.fields[1].steps[0][100], 26.0f);  // as VTK reads it
+}
+
+}  // namespace
+}  // namespace sm::io
