@@ -1,6 +1,8 @@
 // .pvtu reader: each <Piece Source="..."> is a .vtu read on its own, its cells given the piece's
 // index as cluster id; the pieces are then welded into one mesh (weld.h).
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 
 #include "common/error.h"
 #include "common/file_util.h"
@@ -47,6 +49,40 @@ std::vector<int> chosenPieces(const std::string& path, int count, const ReadOpti
 
 int countPvtuPieces(const std::string& path) {
   return static_cast<int>(pieceFiles(path).size());
+}
+
+namespace {
+
+// NumberOfCells of the <Piece> elements in the first bytes of a .vtu: the XML header precedes
+// appended data, so a rank can size a piece without reading it.
+uint64_t declaredCells(const std::string& file) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) throw FileError(file, "cannot open");
+  std::string head(1 << 16, '\0');
+  head.resize(std::fread(head.data(), 1, head.size(), f));
+  std::fclose(f);
+  uint64_t cells = 0;
+  bool found = false;
+  for (size_t at = head.find("<Piece"); at != std::string::npos; at = head.find("<Piece", at + 6)) {
+    size_t a = head.find("NumberOfCells=\"", at);
+    size_t close = head.find('>', at);
+    if (a == std::string::npos || a > close) continue;
+    char* end = nullptr;
+    unsigned long long n = std::strtoull(head.c_str() + a + 15, &end, 10);
+    if (end == head.c_str() + a + 15) throw FileError(file, "NumberOfCells is not a number");
+    cells += n;
+    found = true;
+  }
+  if (!found) throw FileError(file, "no <Piece NumberOfCells=...> in its header");
+  return cells;
+}
+
+}  // namespace
+
+std::vector<uint64_t> pieceCellCounts(const std::string& path) {
+  std::vector<uint64_t> counts;
+  for (const std::string& file : pieceFiles(path)) counts.push_back(declaredCells(file));
+  return counts;
 }
 
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options) {

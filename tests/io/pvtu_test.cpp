@@ -77,6 +77,13 @@ TEST(PvtuReader, ReadsASubsetKeepingGlobalPieceNumbers) {
   EXPECT_EQ(m.clusters[mesh::typeIndex(CellType::Tet)][0], 2);
 }
 
+// Ranks share pieces out by the cell counts in the pieces' headers, without reading them.
+TEST(PvtuReader, PieceCellCountsComeFromTheHeaders) {
+  EXPECT_EQ(pieceCellCounts(fixturePath("weld.pvtu")), (std::vector<uint64_t>{1, 2, 1}));
+  EXPECT_NE(fileErrorOf([] { pieceCellCounts(fixturePath("no_such.pvtu")); }).find("no_such.pvtu"),
+            std::string::npos);
+}
+
 TEST(PvtuReader, BadPieceNumbersAreErrors) {
   ReadOptions o;
   o.pieces = {3};
