@@ -1,0 +1,30 @@
+#include "compositor/mpi/mpi_session.h"
+
+#include <mpi.h>
+
+#include <cstdlib>
+
+#include "compositor/mpi/mpi_communicator.h"
+
+namespace sm::comp {
+
+bool launchedByMpi() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+    if (std::getenv(var)) return true;
+  return false;
+}
+
+MpiSession::MpiSession() {
+  int provided = 0;
+  mpiCheck(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  // Errors come back as codes from here on, so that they become messages instead of silent aborts.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+}
+
+MpiSession::~MpiSession() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+}  // namespace sm::comp
