@@ -1,0 +1,137 @@
+// `shellmarch generate`: CFD-like meshes from gmsh (a capsule or a lander in a far-field box) or
+// tiny analytic meshes, split into clusters, with analytic fields, written as .pvtu.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "common/error.h"
+#include "common/file_util.h"
+#include "common/timer.h"
+#include "gen/generate.h"
+#include "io/mesh_io.h"
+#include "partition/partition.h"
+
+namespace sm::app {
+namespace {
+
+struct GenerateArgs {
+  std::string body = "capsule";
+  uint64_t elements = 300000;
+  int clusters = 8;
+  int steps = 1;
+  bool hexBlock = false;
+  uint64_t seed = 1;
+  std::string analytic;
+  int cubeN = 4;
+  int threads = 0;
+  std::string out;
+};
+
+constexpr uint64_t kMinElements = 5000, kMaxElements = 100000000;
+
+mesh::UnstructuredMesh analyticMesh(const std::string& kind, int cubeN) {
+  using mesh::CellType;
+  if (kind == "single-tet") return gen::singleElement(CellType::Tet);
+  if (kind == "single-pyramid") return gen::singleElement(CellType::Pyramid);
+  if (kind == "single-wedge") return gen::singleElement(CellType::Wedge);
+  if (kind == "single-hex") return gen::singleElement(CellType::Hex);
+  if (kind == "zoo") return gen::zoo();
+  if (kind == "cube-tets5") return gen::cube(gen::CubeSplit::Tets5, cubeN);
+  if (kind == "cube-tets6") return gen::cube(gen::CubeSplit::Tets6, cubeN);
+  if (kind == "cube-wedges") return gen::cube(gen::CubeSplit::Wedges, cubeN);
+  if (kind == "cube-pyramids") return gen::cube(gen::CubeSplit::Pyramids, cubeN);
+  if (kind == "cube-hex") return gen::cube(gen::CubeSplit::Hex, cubeN);
+  throw Error("--analytic: unknown mesh '", kind,
+              "' (expected single-tet, single-pyramid, single-wedge, single-hex, zoo, cube-tets5, "
+              "cube-tets6, cube-wedges, cube-pyramids or cube-hex)");
+}
+
+// Option checks that CLI11 cannot express, each naming its option.
+void validate(const GenerateArgs& a, const CLI::App& cmd) {
+  if (fileExtension(a.out) != ".pvtu")
+    throw Error("--out: expected a .pvtu file, got '", a.out, "'");
+  if (a.clusters < 1) throw Error("--clusters: must be at least 1, got ", a.clusters);
+  if (a.steps < 1) throw Error("--steps: must be at least 1, got ", a.steps);
+  if (a.threads < 0) throw Error("--threads: must not be negative, got ", a.threads);
+  if (a.analytic.empty()) {
+    if (a.body != "capsule" && a.body != "lander")
+      throw Error("--body: expected capsule or lander, got '", a.body, "'");
+    if (a.elements < kMinElements || a.elements > kMaxElements)
+      throw Error("--elements: must be between ", kMinElements, " and ", kMaxElements, ", got ",
+                  a.elements);
+    if (cmd.count("--cube-n")) throw Error("--cube-n: applies to --analytic cube-* meshes only");
+    return;
+  }
+  for (const char* gmshOnly : {"--body", "--elements", "--hex-block", "--threads"})
+    if (cmd.count(gmshOnly)) throw Error(gmshOnly, ": applies to gmsh meshes, not to --analytic");
+  if (a.cubeN < 1 || a.cubeN > 1000)
+    throw Error("--cube-n: must be between 1 and 1000, got ", a.cubeN);
+  if (cmd.count("--cube-n") && a.analytic.rfind("cube-", 0) != 0)
+    throw Error("--cube-n: applies to --analytic cube-* meshes only");
+}
+
+std::string summary(const std::string& out, const mesh::UnstructuredMesh& m, double seconds) {
+  std::string types;
+  for (mesh::CellType t : mesh::kAllCellTypes) {
+    if (!types.empty()) types += ", ";
+    types += concat(m.numCells(t), " ", mesh::cellTypePluralName(t));
+  }
+  char time[32];
+  std::snprintf(time, sizeof time, "%.1f", seconds);
+  return concat("wrote ", out, ": ", m.numCells(), " elements (", types, "), ", m.numClusters(),
+                " clusters, ", m.numSteps(), m.numSteps() == 1 ? " step, " : " steps, ", time,
+                " s");
+}
+
+void runGenerate(const GenerateArgs& a, const CLI::App& cmd) {
+  validate(a, cmd);
+  Timer timer;
+  mesh::UnstructuredMesh m;
+  if (a.analytic.empty()) {
+    gen::CfdMeshOptions o;
+    o.body = a.body == "lander" ? gen::Body::Lander : gen::Body::Capsule;
+    o.targetElements = a.elements;
+    o.clusters = a.clusters;
+    o.steps = a.steps;
+    o.hexBlock = a.hexBlock;
+    o.seed = a.seed;
+    o.threads = a.threads;
+    m = gen::generateCfdMesh(o);
+  } else {
+    m = analyticMesh(a.analytic, a.cubeN);
+    partition::assignMetisClusters(m, a.clusters, a.seed);
+    gen::addAnalyticFields(m, a.steps);
+  }
+  io::writePvtu(a.out, m);
+  std::printf("%s\n", summary(a.out, m, timer.seconds()).c_str());
+}
+
+}  // namespace
+
+void registerGenerate(CLI::App& app) {
+  auto args = std::make_shared<GenerateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "generate", "Write a CFD-like mesh (gmsh) or an analytic test mesh, in clusters, as .pvtu");
+  cmd->add_option("--body", args->body, "capsule or lander")->capture_default_str();
+  cmd->add_option("--elements", args->elements, "Target element count (within about 25%)")
+      ->capture_default_str();
+  cmd->add_option("--clusters", args->clusters, "METIS clusters (.pvtu pieces)")
+      ->capture_default_str();
+  cmd->add_option("--steps", args->steps, "Time steps of the analytic fields")
+      ->capture_default_str();
+  cmd->add_flag("--hex-block", args->hexBlock, "Add a block of hexahedra in the wake");
+  cmd->add_option("--seed", args->seed, "METIS seed")->capture_default_str();
+  cmd->add_option("--analytic", args->analytic,
+                  "single-tet|single-pyramid|single-wedge|single-hex|zoo|cube-tets5|cube-tets6|"
+                  "cube-wedges|cube-pyramids|cube-hex instead of a gmsh mesh");
+  cmd->add_option("--cube-n", args->cubeN, "Cells per side of the cube-* meshes")
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "gmsh threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--out", args->out, "Output .pvtu (pieces go beside it)")->required();
+  cmd->callback([args, cmd] { runGenerate(*args, *cmd); });
+}
+
+}  // namespace sm::app
