@@ -37,13 +37,14 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--lists", (*raw)["--lists"], "Fragment lists: two-pass (exact), drop or merge (fixed K)");
   cmd->add_option("--k", job->lists.fixedK, "Slots per pixel for fixed-length lists (default 8)");
   cmd->add_option("--encoding", (*raw)["--encoding"], "Fragment encoding: float or rgba8");
-  cmd->add_flag("--plain", "Keep elements uncompacted (no XOR compaction)");
+  auto plain = std::make_shared<bool>(false);
+  cmd->add_flag("--plain", *plain, "Keep elements uncompacted (no XOR compaction)");
   cmd->add_option("--device", job->device, "Vulkan device index or name substring");
   cmd->add_option("--cache-dir", job->cacheDir, "Folder for the preparation cache (off by default)");
   cmd->add_option("--out", job->out, "Output PNG (default shellmarch.png)");
   cmd->add_flag("--stats", job->stats, "Print segments and fragments per pixel, lost rays, ms per stage");
   cmd->add_option("--stats-json", job->statsJson, "Write the statistics as JSON to this file");
-  cmd->callback([cmd, job, raw] {
+  cmd->callback([job, raw, plain] {
     auto get = [&](const char* k) -> const std::string& { return (*raw)[k]; };
     if (!get("--size").empty()) std::tie(job->width, job->height) = parseSize("--size", get("--size"));
     if (!get("--eye").empty()) job->eye = parseVec3("--eye", get("--eye"));
@@ -55,7 +56,7 @@ void registerRender(CLI::App& app) {
     if (!get("--background").empty()) job->background = glm::vec3(parseVec3("--background", get("--background")));
     if (!get("--lists").empty()) job->lists.mode = parseListMode(get("--lists"));
     if (!get("--encoding").empty()) job->lists.encoding = parseEncoding(get("--encoding"));
-    job->compact = cmd->count("--plain") == 0;
+    job->compact = !*plain;
     runParallel([&](Collectives& coll) { runRender(*job, coll); });
   });
 }
