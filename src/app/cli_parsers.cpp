@@ -64,4 +64,10 @@ comp::Encoding parseEncoding(const std::string& value) {
   throw Error("--encoding: '", value, "' (use float or rgba8)");
 }
 
+comp::CompositeMethod parseCompositeMethod(const std::string& value) {
+  if (value == "deep") return comp::CompositeMethod::Deep;
+  if (value == "single") return comp::CompositeMethod::SingleFragment;
+  throw Error("--composite: '", value, "' (use deep or single)");
+}
+
 }  // namespace sm::app

@@ -16,5 +16,6 @@ std::pair<double, double> parseRange(const std::string& option, const std::strin
 double parsePositive(const std::string& option, const std::string& value);                 // > 0, finite
 comp::ListMode parseListMode(const std::string& value);    // two-pass | drop | merge
 comp::Encoding parseEncoding(const std::string& value);    // float | rgba8
+comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
 
 }  // namespace sm::app

@@ -41,7 +41,12 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--plain", *plain, "Keep elements uncompacted (no XOR compaction)");
   cmd->add_option("--device", job->device, "Vulkan device index or name substring");
   cmd->add_option("--cache-dir", job->cacheDir, "Folder for the preparation cache (off by default)");
-  cmd->add_option("--out", job->out, "Output PNG (default shellmarch.png)");
+  cmd->add_option("--out", job->out, "Output image, .png or .pfm (float) (default shellmarch.png)");
+  cmd->add_option("--composite", (*raw)["--composite"],
+                  "deep (exact, default) or single (one fragment per rank and pixel, as IceT-style compositors)");
+  cmd->add_option("--l2-heatmap", job->l2Heatmap,
+                  "Also composite with the other method and write the per-pixel L2 difference heatmap (PNG)");
+  cmd->add_option("--heatmaps", job->heatmaps, "Write fragment-count heatmaps PREFIX_rank<r>.png and PREFIX_all.png");
   cmd->add_flag("--stats", job->stats, "Print segments and fragments per pixel, lost rays, ms per stage");
   cmd->add_option("--stats-json", job->statsJson, "Write the statistics as JSON to this file");
   cmd->callback([job, raw, plain] {
@@ -56,6 +61,7 @@ void registerRender(CLI::App& app) {
     if (!get("--background").empty()) job->background = glm::vec3(parseVec3("--background", get("--background")));
     if (!get("--lists").empty()) job->lists.mode = parseListMode(get("--lists"));
     if (!get("--encoding").empty()) job->lists.encoding = parseEncoding(get("--encoding"));
+    if (!get("--composite").empty()) job->composite = parseCompositeMethod(get("--composite"));
     job->compact = !*plain;
     runParallel([&](Collectives& coll) { runRender(*job, coll); });
   });

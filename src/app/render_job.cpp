@@ -6,9 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/frame_extras.h"
 #include "app/rank_pipeline.h"
 #include "app/render_stats.h"
 #include "common/error.h"
+#include "common/file_util.h"
 #include "common/log.h"
 #include "common/timer.h"
 #include "render/renderer.h"
@@ -26,6 +28,7 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m) 
 }
 
 std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
+  available = std::max<uint64_t>(available, 1);
   if (job.time == "all") {
     std::vector<uint64_t> all(std::max<uint64_t>(available, 1));
     for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
@@ -34,6 +37,9 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   char* end = nullptr;
   long long t = std::strtoll(job.time.c_str(), &end, 10);
   if (job.time.empty() || *end || t < 0) throw Error("--time: '", job.time, "' is not a step index or 'all'");
+  if (uint64_t(t) >= available)
+    throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",
+                available == 1 ? "" : "s", ": 0 .. ", available - 1, ")");
   return {uint64_t(t)};
 }
 
@@ -61,18 +67,6 @@ scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
   return c;
 }
 
-std::string framePath(const std::string& out, uint64_t step, bool sequence) {
-  if (!sequence) return out;
-  std::string stem = out, ext = ".png";
-  if (auto dot = out.rfind('.'); dot != std::string::npos && out.find('/', dot) == std::string::npos) {
-    stem = out.substr(0, dot);
-    ext = out.substr(dot);
-  }
-  char num[16];
-  std::snprintf(num, sizeof num, "_%04llu", (unsigned long long)step);
-  return stem + num + ext;
-}
-
 }  // namespace
 
 void runRender(const RenderJob& job, Collectives& coll) {
@@ -86,7 +80,10 @@ void runRender(const RenderJob& job, Collectives& coll) {
   const std::vector<uint64_t> steps = stepsToRender(job, coll.max(double(available)));
   auto [lo, hi] = job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
 
+  if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
+    throw Error("--out: '", job.out, "' must end in .png or .pfm");
   render::RenderSettings s;
+  s.compositeMethod = job.composite;
   s.width = job.width;
   s.height = job.height;
   s.camera = makeCamera(job, share.wholeBounds);
@@ -113,13 +110,16 @@ void runRender(const RenderJob& job, Collectives& coll) {
   StatsReport report(job, coll);
   report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu, ctx.deviceName(), s);
   for (uint64_t step : steps) {
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, available - 1)));
+    // A rank whose clusters carry fewer steps (or none) holds its last one.
+    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, std::max<uint64_t>(available, 1) - 1)));
     render::FrameResult frame = renderer.render(s);
-    report.addFrame(step, frame, renderer);
+    report.addFrame(step, frame, renderer, compositor);
+    const bool sequence = steps.size() > 1;
+    writeFrameExtras(job, compositor, frame.pixels, step, sequence, coll);
     if (coll.rank() == 0) {
       scene::Image img(job.width, job.height);
       img.pixels = std::move(frame.pixels);
-      scene::writePng(framePath(job.out, step, steps.size() > 1), img, job.background);
+      scene::writeImage(framePath(job.out, step, sequence), img, job.background);
     }
   }
   report.finish(ctx.validationErrors());

@@ -34,7 +34,10 @@ struct RenderJob {
   bool compact = true;
   std::string device;
   std::string cacheDir;       // "" = no preparation cache
-  std::string out = "shellmarch.png";
+  std::string out = "shellmarch.png";   // .png or .pfm (float, for comparisons finer than 8 bits)
+  comp::CompositeMethod composite = comp::CompositeMethod::Deep;
+  std::string l2Heatmap;     // also composite single-fragment; write the L2 difference heatmap here
+  std::string heatmaps;      // prefix: fragment-count heatmaps per rank and combined (PNG)
   bool stats = false;
   std::string statsJson;      // write statistics as JSON here
 };

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 
+#include "compositor/deep_compositor.h"
 #include "scene/camera.h"
 #include "scene/transfer_function.h"
 
@@ -16,6 +17,8 @@ struct RenderSettings {
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
   uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)
+  // Deep (exact, the paper's) or single-fragment compositing (IceT-like, for comparison).
+  comp::CompositeMethod compositeMethod = comp::CompositeMethod::Deep;
 };
 
 }  // namespace sm::render

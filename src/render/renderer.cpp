@@ -123,7 +123,8 @@ FrameResult Renderer::render(const RenderSettings& s) {
   else
     renderFixed(s, p, out);
   auto tc = std::chrono::steady_clock::now();
-  out.pixels = compositor_.composite();
+  out.pixels = compositor_.composite(s.compositeMethod);
+  out.composite = compositor_.stats();
   out.timings.compositeMs = msSince(tc);
   stats_.download(&out.counters, sizeof out.counters);
   out.fragments = out.counters.fragments;

@@ -33,6 +33,7 @@ struct FrameResult {
   FrameTimings timings;
   uint64_t segments = 0;   // segments found this frame on this rank
   uint64_t fragments = 0;  // fragments written this frame on this rank
+  comp::CompositeStats composite;  // this rank's share of compositing
 };
 
 class Renderer {
