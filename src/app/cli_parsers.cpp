@@ -10,7 +10,8 @@
 namespace sm::app {
 namespace {
 
-std::vector<double> numbers(const std::string& option, const std::string& value, char sep, size_t count) {
+std::vector<double> numbers(const std::string& option, const std::string& value, char sep,
+                            size_t count) {
   std::vector<double> out;
   std::stringstream ss(value);
   std::string item;
@@ -21,7 +22,8 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
       throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
     out.push_back(d);
   }
-  if (out.size() != count) throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+  if (out.size() != count)
+    throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
   return out;
 }
 
@@ -29,7 +31,8 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
 
 std::pair<int, int> parseSize(const std::string& option, const std::string& value) {
   auto v = numbers(option, value, 'x', 2);
-  if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] > 16384 || v[1] > 16384)
+  if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) ||
+      v[0] > 16384 || v[1] > 16384)
     throw Error(option, ": '", value, "' is not an image size WxH (1 .. 16384)");
   return {int(v[0]), int(v[1])};
 }
@@ -68,6 +71,12 @@ comp::CompositeMethod parseCompositeMethod(const std::string& value) {
   if (value == "deep") return comp::CompositeMethod::Deep;
   if (value == "single") return comp::CompositeMethod::SingleFragment;
   throw Error("--composite: '", value, "' (use deep or single)");
+}
+
+render::Integration parseIntegration(const std::string& value) {
+  if (value == "sampled") return render::Integration::Sampled;
+  if (value == "exact") return render::Integration::ElementExact;
+  throw Error("--integration: '", value, "' (use sampled or exact)");
 }
 
 }  // namespace sm::app

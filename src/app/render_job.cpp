@@ -36,7 +36,8 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   }
   char* end = nullptr;
   long long t = std::strtoll(job.time.c_str(), &end, 10);
-  if (job.time.empty() || *end || t < 0) throw Error("--time: '", job.time, "' is not a step index or 'all'");
+  if (job.time.empty() || *end || t < 0)
+    throw Error("--time: '", job.time, "' is not a step index or 'all'");
   if (uint64_t(t) >= available)
     throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",
                 available == 1 ? "" : "s", ": 0 .. ", available - 1, ")");
@@ -57,7 +58,8 @@ std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std
 scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
   if (!job.eye) {
     if (job.at || job.up) throw Error("--at and --up need --eye (or use --view)");
-    return scene::frameBounds(whole, scene::parseViewPreset(job.view), double(job.width) / job.height, job.fovy);
+    return scene::frameBounds(whole, scene::parseViewPreset(job.view),
+                              double(job.width) / job.height, job.fovy);
   }
   scene::Camera c;
   c.eye = *job.eye;
@@ -71,12 +73,14 @@ scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
 
 void runRender(const RenderJob& job, Collectives& coll) {
   if (job.width <= 0 || job.height <= 0 || job.width > 16384 || job.height > 16384)
-    throw Error("--size: ", job.width, "x", job.height, " is not a usable image size (1 .. 16384 per side)");
+    throw Error("--size: ", job.width, "x", job.height,
+                " is not a usable image size (1 .. 16384 per side)");
   Timer total;
   RankShare share = loadRankShare(job.mesh, job.share, coll);
   const double loadSeconds = total.seconds();
   const std::string field = resolveField(job, share.mesh);
-  const uint64_t available = share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
+  const uint64_t available =
+      share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
   const std::vector<uint64_t> steps = stepsToRender(job, coll.max(double(available)));
   auto [lo, hi] = job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
 
@@ -84,6 +88,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
     throw Error("--out: '", job.out, "' must end in .png or .pfm");
   render::RenderSettings s;
   s.compositeMethod = job.composite;
+  s.integration = job.integration;
   s.width = job.width;
   s.height = job.height;
   s.camera = makeCamera(job, share.wholeBounds);
@@ -91,14 +96,16 @@ void runRender(const RenderJob& job, Collectives& coll) {
   s.transferFunction.lo = lo;
   s.transferFunction.hi = hi;
   s.transferFunction.opacityScale = job.opacityScale;
-  s.transferFunction.unitDistance = job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
+  s.transferFunction.unitDistance =
+      job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
   s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
   s.earlyTermination = job.earlyTermination;
   if (!(s.transferFunction.unitDistance > 0)) throw Error("--unit-distance must be positive");
   if (!(job.opacityScale >= 0)) throw Error("--opacity-scale must not be negative");
 
   Timer prepTimer;
-  PreparedShare prepared = prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
+  PreparedShare prepared =
+      prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
   const double prepSeconds = prepTimer.seconds();
   vk::ContextOptions vo;
   vo.device = job.device;
@@ -108,10 +115,12 @@ void runRender(const RenderJob& job, Collectives& coll) {
   render::Renderer renderer(ctx, gpu, compositor);
 
   StatsReport report(job, coll);
-  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu, ctx.deviceName(), s);
+  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
+                  ctx.deviceName(), s);
   for (uint64_t step : steps) {
     // A rank whose clusters carry fewer steps (or none) holds its last one.
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, std::max<uint64_t>(available, 1) - 1)));
+    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field,
+                             std::min(step, std::max<uint64_t>(available, 1) - 1)));
     render::FrameResult frame = renderer.render(s);
     report.addFrame(step, frame, renderer, compositor);
     const bool sequence = steps.size() > 1;

@@ -11,13 +11,19 @@ namespace sm::render {
 
 // Specialization shared by every pass: scene (compaction, element types present), device
 // (float64 available) and the compositor's list mode and encoding.
+// What a frame's settings add to the specialisation.
+struct PassOptions {
+  bool elementExact = false;
+};
+
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
-                                                  const comp::DeepCompositor& compositor);
+                                                  const comp::DeepCompositor& compositor,
+                                                  PassOptions options);
 
 class TraversalPass {
  public:
   TraversalPass(const vk::Context& ctx, const GpuScene& scene,
-                const comp::DeepCompositor& compositor);
+                const comp::DeepCompositor& compositor, PassOptions options);
   void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
@@ -27,7 +33,8 @@ class TraversalPass {
 
 class MarchPass {
  public:
-  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+            PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
@@ -36,7 +43,8 @@ class MarchPass {
 
 class FusedPass {
  public:
-  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+            PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:

@@ -9,11 +9,16 @@
 
 namespace sm::render {
 
+// Fixed-step sampling on the global grid t = k dt (the paper's method), or element-exact
+// integration: every element crossing integrated with the pre-integrated transfer function.
+enum class Integration { Sampled, ElementExact };
+
 struct RenderSettings {
   int width = 512, height = 512;
   scene::Camera camera;
   scene::TransferFunction transferFunction;
-  double dt = 0.01;                     // sample spacing along rays, world units
+  double dt = 0.01;  // sample spacing along rays, world units
+  Integration integration = Integration::Sampled;
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
   uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)

@@ -57,9 +57,10 @@ void expectRaysMatch(const std::string& name, const mesh::UnstructuredMesh& m,
   EXPECT_EQ(c.stepLimit, 0u) << name;
   EXPECT_EQ(c.nanRays, 0u) << name;
   EXPECT_LT(c.maxColorError, tol.color) << name << ": worst " << c.worst;
-  if (checkSegments) EXPECT_LT(c.maxDepthError, 1e-4 * size) << name;
-  if (checkSegments)
+  if (checkSegments) {
+    EXPECT_LT(c.maxDepthError, 1e-4 * size) << name;
     EXPECT_LE(double(c.segmentCountMismatches), tol.mismatchFraction * double(c.rays)) << name;
+  }
 }
 
 std::vector<float> smoothField(const mesh::UnstructuredMesh& m, glm::dvec3 lo, double size) {
