@@ -23,7 +23,8 @@ void registerView(CLI::App& app) {
   auto opts = std::make_shared<view::ViewOptions>();
   addSceneOptions(cmd, *job, *raw, "Time step index to start at (default 0)");
   cmd->add_option("--frames", opts->frames, "Render this many frames, then exit");
-  cmd->add_option("--script", opts->script, "Replay input from this file (format: --help-script)");
+  cmd->add_option("--script", opts->script,
+                  "Replay input from this file, or '-' for standard input (format: --help-script)");
   cmd->add_option(
       "--screenshot", opts->screenshot,
       "Write the last frame here at exit (PNG, no overlay); the s key writes FILE_NNNN.png");

@@ -140,6 +140,10 @@ TEST(ViewerMpi, TwoRanksShowWhatOneRankShows) {
   EXPECT_EQ(one["time"], 1);
   EXPECT_EQ(two["time"], 1);
   EXPECT_EQ(two["frames"], 3);
+  EXPECT_EQ(one["ranks"], 1);
+  EXPECT_EQ(two["ranks"], 2);
+  // Each rank sends its own fragments: more of them per pixel than one rank's single segments.
+  EXPECT_GT(two["fragments_per_pixel"].get<double>(), one["fragments_per_pixel"].get<double>());
   const scene::ImageError e = scene::compareImages(oneImage, twoImage);
   std::printf("2 ranks vs 1 rank: RMSE %.3g, max abs %.3g (8-bit steps %.1f)\n", e.rmse, e.maxAbs,
               e.maxAbs * 255);

@@ -3,6 +3,7 @@
 // (Xvfb's framebuffer) compared with the screenshot; headless use without a display.
 // Every run has the validation layer on (SHELLMARCH_VALIDATION=1 from ctest) and must report
 // no error.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -128,6 +129,30 @@ TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   EXPECT_EQ(r.err,
             "shellmarch: error: view: no display (DISPLAY is not set): run under xvfb-run, or use "
             "--headless\n");
+}
+
+TEST(ViewerHeadless, BadInputIsOneLineNamingTheOption) {
+  const std::string dir = outputDir("ViewerHeadless.BadInput");
+  const std::string mesh = generateTestMesh(dir), script = dir + "/bad.txt";
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    std::fputs("frame\ndrag sideways 3 4\n", f);
+    std::fclose(f);
+  }
+  const std::pair<std::string, std::string> cases[] = {
+      {"--headless", "--headless needs --frames or --script"},
+      {"--headless --script " + quote(script), "bad.txt:2: 'drag' needs a button"},
+      {"--headless --frames 1 --time 99", "--time: field 'linear' has 3 time steps"},
+      {"--headless --frames 1 --time all", "--time: 'all' is not a step index"},
+      {"--headless --frames -2", "--frames"},
+      {"--headless --frames 1 --size 0x4", "--size"},
+  };
+  for (const auto& [args, want] : cases) {
+    CommandResult r = runCommand(shellmarch() + " view " + quote(mesh) + " " + args, dir, "view");
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_NE(r.err.find(want), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
 }
 
 }  // namespace

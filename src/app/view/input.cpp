@@ -26,19 +26,19 @@ Key keyFromName(const std::string& name) {
 
 std::string controlsHelp() {
   return "shellmarch view controls:\n"
-         "  left drag          orbit about the point looked at\n"
-         "  middle drag, shift+left drag   pan\n"
-         "  wheel, right drag  zoom\n"
-         "  right / left       next / previous time step\n"
-         "  f / shift+f        next / previous field\n"
-         "  c / shift+c        next / previous colour map\n"
-         "  up / down          opacity scale x 1.25 / / 1.25\n"
-         "  [ / ]              finer / coarser sampling step (/ 1.25, x 1.25)\n"
-         "  r                  reset the view\n"
-         "  s                  screenshot (PNG, without the overlay)\n"
-         "  o                  overlay on / off\n"
-         "  h                  print these controls\n"
-         "  q, escape          quit\n";
+         "  left drag                     orbit about the point looked at\n"
+         "  middle drag, shift+left drag  pan\n"
+         "  wheel, right drag             zoom\n"
+         "  right / left                  next / previous time step\n"
+         "  f / shift+f                   next / previous field\n"
+         "  c / shift+c                   next / previous colour map\n"
+         "  up / down                     opacity scale times / divided by 1.25\n"
+         "  [ / ]                         finer / coarser sampling step (by 1.25)\n"
+         "  r                             reset the view\n"
+         "  s                             screenshot (PNG, without the overlay)\n"
+         "  o                             overlay on / off\n"
+         "  h                             print these controls (on stderr)\n"
+         "  q, escape                     quit\n";
 }
 
 InputHandler::InputHandler(const scene::Camera& home, const ViewChoices& choices)

@@ -124,7 +124,8 @@ struct ScriptParser {
 };
 
 std::string scriptHelp() {
-  return "shellmarch view --script FILE: one command per line, '#' starts a comment.\n"
+  return "shellmarch view --script FILE (or - for standard input, read as frames need it):\n"
+         "one command per line, '#' starts a comment.\n"
          "Input commands go to the next frame rendered; window pixels, y down.\n"
          "  move X Y                       cursor to (X, Y); drags while a button is held\n"
          "  press left|middle|right [shift]\n"

@@ -166,6 +166,8 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
   writeScreenshots();
 }
 
+// Frame time is the previous frame's, input to present: this one is not presented yet. Fragments
+// per pixel count every rank's fragments over the pixels the composited image covers.
 std::vector<std::string> Viewer::overlayLines() const {
   const FieldInfo& f = scene_->field();
   std::vector<std::string> lines;
@@ -198,6 +200,7 @@ nlohmann::json Viewer::report(uint64_t errors) const {
   const std::string colormap = scene_->choices().colormaps[size_t(state_.colormap)];
   nlohmann::json j;
   j["frames"] = framesShown_;
+  j["ranks"] = coll_.size();
   j["size"] = {lastWidth_, lastHeight_};
   j["eye"] = {state_.eye.x, state_.eye.y, state_.eye.z};
   j["at"] = {state_.at.x, state_.at.y, state_.at.z};
