@@ -9,5 +9,6 @@ namespace sm::app {
 void registerInfo(CLI::App& app);      // cmd_info.cpp
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
 void registerRender(CLI::App& app);    // cmd_render.cpp
+void registerView(CLI::App& app);      // cmd_view.cpp
 
 }  // namespace sm::app
