@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <memory>
 
 #include "render/render_harness.h"
+#include "renderer_suite.h"
 #include "scene/camera.h"
 #include "shellmarch/insitu.h"
 #include "sim_mesh.h"
@@ -41,17 +41,7 @@ float alphaAt(const api::Image& img, int x, int y) {
   return img.rgba[(size_t(y) * img.width + x) * 4 + 3];
 }
 
-class InsituApi : public ::testing::Test {
- protected:
-  // One renderer (one device context) for the suite: setMesh replaces the mesh each test.
-  static void SetUpTestSuite() { vis_ = std::make_unique<api::Renderer>(); }
-  static void TearDownTestSuite() {
-    EXPECT_EQ(vis_->stats().validationErrors, 0u);
-    vis_.reset();
-  }
-  static std::unique_ptr<api::Renderer> vis_;
-};
-std::unique_ptr<api::Renderer> InsituApi::vis_;
+using InsituApi = RendererSuite;
 
 // A unit cube of constant extinction sigma: every pixel's opacity is 1 - exp(-sigma L).
 void expectSlab(api::Renderer& vis, const mesh::UnstructuredMesh& m, const char* name) {

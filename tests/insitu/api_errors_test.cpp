@@ -5,8 +5,8 @@
 
 #include <cmath>
 #include <limits>
-#include <memory>
 
+#include "renderer_suite.h"
 #include "shellmarch/insitu.h"
 #include "sim_mesh.h"
 #include "support/test_meshes.h"
@@ -47,16 +47,7 @@ api::RenderSettings small() {
   return s;
 }
 
-class InsituErrors : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { vis_ = std::make_unique<api::Renderer>(); }
-  static void TearDownTestSuite() {
-    EXPECT_EQ(vis_->stats().validationErrors, 0u);
-    vis_.reset();
-  }
-  static std::unique_ptr<api::Renderer> vis_;
-};
-std::unique_ptr<api::Renderer> InsituErrors::vis_;
+using InsituErrors = RendererSuite;
 
 TEST_F(InsituErrors, MeshArrays) {
   api::Renderer& r = *vis_;
