@@ -1,7 +1,6 @@
 #include "group.h"
 
 #include <bit>
-#include <cstring>
 #include <numeric>
 #include <string>
 #include <vector>
