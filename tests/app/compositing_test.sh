@@ -3,7 +3,7 @@
 #   compositing_test.sh CASE SHELLMARCH IMAGE_DIFF REFERENCE_CHECK WORKDIR
 # The demo mesh is made once by the `demo` case (a ctest fixture) and shared.
 set -euo pipefail
-case_name=$1 sm=$2 diff=$3 refcheck=$4 work=$5
+case_name=$1 sm=$2 diff=$3 refcheck=$4 work=$5 nested=${6:-}
 mkdir -p "$work"
 cd "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -40,6 +40,23 @@ case $case_name in
     "$diff" one.pfm deep.pfm --max-abs 1e-3
     "$diff" one.pfm single.pfm --min-max-abs 0.02
     test -s l2.png && test -s counts_rank0.png && test -s counts_rank2.png && test -s counts_all.png
+    ;;
+  nested-and-empty)
+    # Clusters enclosed by other clusters (an onion of three), one per rank: deep compositing gives
+    # the one-rank image and the CPU reference's; single-fragment compositing does not. On 4 ranks
+    # one rank holds no elements and still takes part.
+    "$nested" nested.pvtu
+    nview=(--field vortex --size 80x64 --step 0.01 --unit-distance 0.3 --range 0,1 --colormap viridis
+           --eye 2.2,-1.6,1.4 --at 0.5,0.5,0.5 --up 0,0,1 --fovy 35 --background 0,0,0 --early-termination 1)
+    "$sm" render nested.pvtu "${nview[@]}" --out n1.pfm
+    mpi 3 "$sm" render nested.pvtu "${nview[@]}" --stats --out n3.pfm | tee n3.log
+    mpi 4 "$sm" render nested.pvtu "${nview[@]}" --stats --out n4.pfm | tee n4.log
+    mpi 3 "$sm" render nested.pvtu "${nview[@]}" --composite single --out n3single.pfm
+    grep -q "elements min 0 " n4.log || { echo "FAIL: no empty rank on 4 ranks"; exit 1; }
+    "$diff" n1.pfm n3.pfm --max-abs 1e-3
+    "$diff" n1.pfm n4.pfm --max-abs 1e-3
+    "$diff" n1.pfm n3single.pfm --min-max-abs 0.02
+    "$refcheck" nested.pvtu vortex n1.pfm 80 64 0.01 0.3 0 1 viridis 2.2 -1.6 1.4 0.5 0.5 0.5 0 0 1 35
     ;;
   *) echo "unknown case $case_name" >&2; exit 2 ;;
 esac
