@@ -25,13 +25,20 @@ uint firstSample(float t, float dt) {
   return k;
 }
 
-void addSample(FrameParams fp, float s, inout vec4 acc) {
-  if (isnan(s) || isinf(s)) return;  // non-finite data renders transparent
-  vec4 c = transferLookup(fp, s);
-  float alpha = 1.0 - exp(-c.a * fp.sigmaScale * fp.dt);
-  acc.rgb += (1.0 - acc.a) * alpha * c.rgb;
-  acc.a += (1.0 - acc.a) * alpha;
+layout(constant_id = 13) const bool kShading = false;
+
+// Blinn-Phong with a headlight (light and view along -dir, so the half vector is too), two-sided:
+// a gradient pointing away from the viewer lights the same as one pointing at it.
+float shadingCosine(vec3 grad, vec3 dir) {
+  float m = length(grad);
+  return m > 0.0 && !isinf(m) ? abs(dot(grad, dir)) / m : -1.0;  // -1: no normal, unshaded
 }
+
+vec3 shade(FrameParams fp, vec3 rgb, float alpha, float c) {
+  if (c < 0.0) return rgb;
+  return rgb * (fp.shadeAmbient + fp.shadeDiffuse * c) + alpha * fp.shadeSpecular * pow(c, fp.shadeShininess);
+}
+
 
 layout(constant_id = 12) const bool kElementExact = false;
 
@@ -101,20 +108,52 @@ vec4 preintegrated(FrameParams fp, float sf, float sb, float L) {
 const uint kMinPieces = 4u;
 const uint kMaxPieces = 64u;
 
+// World-space gradient of the scalar (for shading): constant in a tetrahedron; elsewhere from the
+// shape functions at parametric point p, mapped by the inverse transposed Jacobian.
+vec3 scalarGradient(uint type, ElementGeom g, vec3 X[8], vec3 p) {
+  mat3 J;
+  vec3 dp;
+  if (type == SM_TET) {
+    J = mat3(g.W[1] - g.W[0], g.W[2] - g.W[0], g.W[3] - g.W[0]);
+    dp = vec3(g.S[1] - g.S[0], g.S[2] - g.S[0], g.S[3] - g.S[0]);
+  } else {
+    float N[8];
+    vec3 dN[8];
+    shapeFunctions(type, p, N, dN);
+    J = mat3(0.0);
+    dp = vec3(0.0);
+    SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
+      J[0] += dN[i].x * X[i];
+      J[1] += dN[i].y * X[i];
+      J[2] += dN[i].z * X[i];
+      dp += g.S[i] * dN[i];
+    }
+  }
+  if (!(abs(determinant(J)) > 0.0)) return vec3(0.0);
+  return inverse(transpose(J)) * dp;
+}
+
 // The scalar at t on the element crossed over [tIn, tOut]: tetrahedra interpolate linearly along
 // the ray between the crossing scalars (exact for linear elements); the other types evaluate their
-// shape functions (Newton from the last point's parametric coordinates) everywhere.
+// shape functions (Newton from the last point's parametric coordinates) everywhere. With shading,
+// also the shading cosine there.
 float scalarAlongRay(RayFrame fr, uint type, ElementGeom g, vec3 X[8], float tIn, float tOut, float sIn,
-                     float sOut, float t, inout vec3 guess) {
-  if (type == SM_TET) return t <= tIn ? sIn : t >= tOut ? sOut : mix(sIn, sOut, (t - tIn) / (tOut - tIn));
-  // Not the crossing scalars at the ends: those interpolate over the face's triangles, which differs
-  // from the cell's own (bilinear) interpolation on a quadrilateral face.
-  invertIsoparametric(type, X, fr.org + t * fr.dir - g.W[0], guess);
-  return interpolateIsoparametric(type, guess, g.S);
+                     float sOut, float t, inout vec3 guess, out float cosine) {
+  float s;
+  if (type == SM_TET) {
+    s = t <= tIn ? sIn : t >= tOut ? sOut : mix(sIn, sOut, (t - tIn) / (tOut - tIn));
+  } else {
+    // Not the crossing scalars at the ends: those interpolate over the face's triangles, which
+    // differs from the cell's own (bilinear) interpolation on a quadrilateral face.
+    invertIsoparametric(type, X, fr.org + t * fr.dir - g.W[0], guess);
+    s = interpolateIsoparametric(type, guess, g.S);
+  }
+  cosine = kShading ? shadingCosine(scalarGradient(type, g, X, guess), fr.dir) : -1.0;
+  return s;
 }
 
 // What the element crossed over [tIn, tOut) adds within [a, b): its samples on the global grid,
-// or in element-exact mode the whole piece, pre-integrated.
+// or in element-exact mode the whole piece, pre-integrated (shaded with the cosine at its end).
 void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, float tIn, float tOut, float sIn,
                       float sOut, float a, float b, inout vec3 guess, inout vec4 acc, inout uint samples) {
   float dt = fp.dt;
@@ -122,14 +161,17 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, flo
   vec3 X[8];
   if (type != SM_TET)
     for (uint i = 0u; i < 8u; ++i) X[i] = g.W[i] - g.W[0];
+  float cosine;
   if (kElementExact) {
     uint m = type == SM_TET ? 1u : clamp(uint(ceil((b - a) / dt)), kMinPieces, kMaxPieces);
     float tPrev = a, sPrev = 0.0;
     SM_NO_UNROLL for (uint i = 0u; i <= m; ++i) {
       float t = i == m ? b : mix(a, b, float(i) / float(m));
-      float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess);
+      float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
       if (i > 0u) {
-        acc += (1.0 - acc.a) * preintegrated(fp, sPrev, s, t - tPrev);
+        vec4 c = preintegrated(fp, sPrev, s, t - tPrev);
+        if (kShading) c.rgb = shade(fp, c.rgb, c.a, cosine);
+        acc += (1.0 - acc.a) * c;
         samples += 1u;
         if (acc.a >= fp.earlyTermination) return;
       }
@@ -140,7 +182,15 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, flo
   }
   for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
-    addSample(fp, scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess), acc);
+    float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
+    vec4 c = vec4(0.0);
+    if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
+      c = transferLookup(fp, s);
+      if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
+    }
+    float alpha = 1.0 - exp(-c.a * fp.sigmaScale * dt);
+    acc.rgb += (1.0 - acc.a) * alpha * c.rgb;
+    acc.a += (1.0 - acc.a) * alpha;
     samples += 1u;
     if (acc.a >= fp.earlyTermination) return;
   }

@@ -67,6 +67,10 @@ struct FrameParams {
   float piLo;  // scalar range of the pre-integration tables
   float piHi;
   uint pad0;
+  float shadeAmbient;  // Blinn-Phong coefficients (src/render/render_settings.h, Shading)
+  float shadeDiffuse;
+  float shadeSpecular;
+  float shadeShininess;
 };
 
 // An explicit ray (rebased origin, unit direction), for tests that aim rays at vertices and edges.
@@ -102,7 +106,7 @@ struct RenderStats {
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 14 * 8 + 10 * 8 + 4 * 16 + 18 * 4, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 14 * 8 + 10 * 8 + 4 * 16 + 22 * 4, "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(RenderStats) == 48, "RenderStats layout");

@@ -48,6 +48,20 @@ std::pair<double, double> parseRange(const std::string& option, const std::strin
   return {v[0], v[1]};
 }
 
+render::Shading parseShading(const std::string& option, const std::string& value) {
+  auto v = numbers(option, value, ',', 4);
+  if (!(v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[3] >= 1 && v[3] <= 1024))
+    throw Error(option, ": '", value,
+                "' needs AMBIENT,DIFFUSE,SPECULAR >= 0 and a SHININESS in [1, 1024]");
+  render::Shading s;
+  s.enabled = true;
+  s.ambient = v[0];
+  s.diffuse = v[1];
+  s.specular = v[2];
+  s.shininess = v[3];
+  return s;
+}
+
 double parsePositive(const std::string& option, const std::string& value) {
   double v = numbers(option, value, ',', 1)[0];
   if (!(v > 0)) throw Error(option, ": ", value, " must be positive");

@@ -20,5 +20,6 @@ comp::ListMode parseListMode(const std::string& value);                // two-pa
 comp::Encoding parseEncoding(const std::string& value);                // float | rgba8
 comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
 render::Integration parseIntegration(const std::string& value);        // sampled | exact
+render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
 
 }  // namespace sm::app

@@ -17,15 +17,20 @@ void registerRender(CLI::App& app) {
   addSceneOptions(cmd, *job, *raw, "Time step index, or 'all' for a numbered PNG sequence");
   cmd->add_option("--out", job->out, "Output image, .png or .pfm (float) (default shellmarch.png)");
   cmd->add_option("--composite", raw->text["--composite"],
-                  "deep (exact, default) or single (one fragment per rank and pixel, as IceT-style compositors)");
-  cmd->add_option("--l2-heatmap", job->l2Heatmap,
-                  "Also composite with the other method and write the per-pixel L2 difference heatmap (PNG)");
-  cmd->add_option("--heatmaps", job->heatmaps, "Write fragment-count heatmaps PREFIX_rank<r>.png and PREFIX_all.png");
-  cmd->add_flag("--stats", job->stats, "Print segments and fragments per pixel, lost rays, ms per stage");
+                  "deep (exact, default) or single (one fragment per rank and pixel, as IceT-style "
+                  "compositors)");
+  cmd->add_option(
+      "--l2-heatmap", job->l2Heatmap,
+      "Also composite with the other method and write the per-pixel L2 difference heatmap (PNG)");
+  cmd->add_option("--heatmaps", job->heatmaps,
+                  "Write fragment-count heatmaps PREFIX_rank<r>.png and PREFIX_all.png");
+  cmd->add_flag("--stats", job->stats,
+                "Print segments and fragments per pixel, lost rays, ms per stage");
   cmd->add_option("--stats-json", job->statsJson, "Write the statistics as JSON to this file");
   cmd->callback([job, raw] {
     applySceneOptions(*raw, *job);
-    if (!raw->text["--composite"].empty()) job->composite = parseCompositeMethod(raw->text["--composite"]);
+    if (!raw->text["--composite"].empty())
+      job->composite = parseCompositeMethod(raw->text["--composite"]);
     runParallel([&](Collectives& coll) { runRender(*job, coll); });
   });
 }

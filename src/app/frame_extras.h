@@ -18,7 +18,8 @@ struct RenderJob;
 // Path for step `step` of a sequence ("out.png" -> "out_0003.png"); `path` itself for one frame.
 std::string framePath(const std::string& path, uint64_t step, bool sequence);
 
-void writeFrameExtras(const RenderJob& job, comp::DeepCompositor& compositor, const std::vector<glm::vec4>& image,
-                      uint64_t step, bool sequence, Collectives& coll);
+void writeFrameExtras(const RenderJob& job, comp::DeepCompositor& compositor,
+                      const std::vector<glm::vec4>& image, uint64_t step, bool sequence,
+                      Collectives& coll);
 
 }  // namespace sm::app

@@ -30,7 +30,8 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   }
   char* end = nullptr;
   long long t = std::strtoll(job.time.c_str(), &end, 10);
-  if (job.time.empty() || *end || t < 0) throw Error("--time: '", job.time, "' is not a step index or 'all'");
+  if (job.time.empty() || *end || t < 0)
+    throw Error("--time: '", job.time, "' is not a step index or 'all'");
   if (uint64_t(t) >= available)
     throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",
                 available == 1 ? "" : "s", ": 0 .. ", available - 1, ")");
@@ -45,9 +46,11 @@ void runRender(const RenderJob& job, Collectives& coll) {
   RankShare share = loadRankShare(job.mesh, job.share, coll);
   const double loadSeconds = total.seconds();
   const std::string field = resolveField(job, share.mesh);
-  const uint64_t available = share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
+  const uint64_t available =
+      share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
   const std::vector<uint64_t> steps = stepsToRender(job, coll.max(double(available)));
-  const std::pair<double, double> range = job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
+  const std::pair<double, double> range =
+      job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
 
   if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
     throw Error("--out: '", job.out, "' must end in .png or .pfm");
@@ -55,7 +58,8 @@ void runRender(const RenderJob& job, Collectives& coll) {
   s.compositeMethod = job.composite;
 
   Timer prepTimer;
-  PreparedShare prepared = prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
+  PreparedShare prepared =
+      prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
   const double prepSeconds = prepTimer.seconds();
   vk::Context ctx(contextOptions(job));
   render::GpuScene gpu(ctx, prepared.rank);
@@ -63,10 +67,12 @@ void runRender(const RenderJob& job, Collectives& coll) {
   render::Renderer renderer(ctx, gpu, compositor);
 
   StatsReport report(job, coll);
-  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu, ctx.deviceName(), s);
+  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
+                  ctx.deviceName(), s);
   for (uint64_t step : steps) {
     // A rank whose clusters carry fewer steps (or none) holds its last one.
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, std::max<uint64_t>(available, 1) - 1)));
+    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field,
+                             std::min(step, std::max<uint64_t>(available, 1) - 1)));
     render::FrameResult frame = renderer.render(s);
     report.addFrame(step, frame, renderer, compositor);
     const bool sequence = steps.size() > 1;

@@ -38,6 +38,7 @@ struct RenderJob {
   std::string out = "shellmarch.png";  // .png or .pfm (float, for comparisons finer than 8 bits)
   comp::CompositeMethod composite = comp::CompositeMethod::Deep;
   render::Integration integration = render::Integration::Sampled;
+  render::Shading shading;
   std::string l2Heatmap;  // also composite single-fragment; write the L2 difference heatmap here
   std::string heatmaps;   // prefix: fragment-count heatmaps per rank and combined (PNG)
   bool stats = false;

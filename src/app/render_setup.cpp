@@ -60,6 +60,7 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
   s.earlyTermination = job.earlyTermination;
   s.integration = job.integration;
+  s.shading = job.shading;
   if (!(s.transferFunction.unitDistance > 0)) throw Error("--unit-distance must be positive");
   if (!(job.opacityScale >= 0)) throw Error("--opacity-scale must not be negative");
   return s;

@@ -33,8 +33,9 @@ StatsReport::StatsReport(const RenderJob& job, Collectives& coll) : job_(job), c
   json_["frames"] = nlohmann::json::array();
 }
 
-void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache, const prep::PreparedRank& rank,
-                           const render::GpuScene& gpu, const std::string& device, const render::RenderSettings& s) {
+void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache,
+                           const prep::PreparedRank& rank, const render::GpuScene& gpu,
+                           const std::string& device, const render::RenderSettings& s) {
   auto mem = prep::memoryReport(rank);
   mem.accelerationStructures = gpu.accelerationStructureBytes();
   json_["device"] = device;
@@ -44,7 +45,8 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["prepare_from_cache"] = fromCache;
   // Per-rank load as the paper's table reports it: min, max and average over ranks.
   auto spread = [&](double v) {
-    return nlohmann::json{{"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
+    return nlohmann::json{
+        {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
   };
   json_["elements"] = coll_.sum(rank.numElements());
   json_["elements_per_rank"] = spread(double(rank.numElements()));
@@ -54,10 +56,12 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["memory_rank0"] = mem;
 }
 
-bool StatsReport::wanted() const { return job_.stats || !job_.statsJson.empty(); }
+bool StatsReport::wanted() const {
+  return job_.stats || !job_.statsJson.empty();
+}
 
-void StatsReport::addFrame(uint64_t step, const render::FrameResult& f, const render::Renderer& renderer,
-                           comp::DeepCompositor& compositor) {
+void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
+                           const render::Renderer& renderer, comp::DeepCompositor& compositor) {
   if (!wanted()) return;  // per-pixel counts cost a download and a gather per frame
   PixelCountSummary seg = summarise(renderer.lastSegmentCounts());
   PixelCountSummary frag = summarise(renderer.lastFragmentCounts());
@@ -103,41 +107,57 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f, const re
 void StatsReport::printSetup() const {
   const auto& j = json_;
   std::printf("shellmarch render: %s on %s, %d rank(s), %dx%d, dt %.4g\n", job_.mesh.c_str(),
-              j["device"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height, j["dt"].get<double>());
+              j["device"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height,
+              j["dt"].get<double>());
   std::printf("  load %.2f s, prepare %.2f s%s; %llu elements, %llu shell triangles\n",
               j["load_seconds_max"].get<double>(), j["prepare_seconds_max"].get<double>(),
               j["prepare_from_cache"].get<bool>() ? " (from cache)" : "",
-              (unsigned long long)j["elements"].get<uint64_t>(), (unsigned long long)j["shell_triangles"].get<uint64_t>());
+              (unsigned long long)j["elements"].get<uint64_t>(),
+              (unsigned long long)j["shell_triangles"].get<uint64_t>());
   if (coll_.size() > 1) {
     const auto &e = j["elements_per_rank"], &sh = j["shell_triangles_per_rank"];
-    std::printf("  per rank: elements min %.0f max %.0f avg %.0f; shell triangles min %.0f max %.0f avg %.0f\n",
-                e["min"].get<double>(), e["max"].get<double>(), e["avg"].get<double>(), sh["min"].get<double>(),
-                sh["max"].get<double>(), sh["avg"].get<double>());
+    std::printf(
+        "  per rank: elements min %.0f max %.0f avg %.0f; shell triangles min %.0f max %.0f avg "
+        "%.0f\n",
+        e["min"].get<double>(), e["max"].get<double>(), e["avg"].get<double>(),
+        sh["min"].get<double>(), sh["max"].get<double>(), sh["avg"].get<double>());
   }
 }
 
 void StatsReport::printFrame(const nlohmann::json& fr) const {
   auto u = [&](const char* k) { return (unsigned long long)fr[k].get<uint64_t>(); };
-  std::printf("  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
-              "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
-              u("step"), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(), fr["scan_ms"].get<double>(),
-              fr["march_ms"].get<double>(), fr["composite_ms"].get<double>(), fr["integration_ms"].get<double>(),
-              fr["compositing_ms"].get<double>());
-  std::printf("    segments/pixel mean %.2f max %.0f; fragments/pixel mean %.2f max %.0f (non-empty pixels)\n",
-              fr["segments_per_pixel_mean_rank0"].get<double>(), fr["segments_per_pixel_max"].get<double>(),
-              fr["fragments_per_pixel_mean_rank0"].get<double>(), fr["fragments_per_pixel_max"].get<double>());
-  std::printf("    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow %llu; "
-              "%llu samples, %llu element steps\n",
-              u("lost_rays"), u("grazing_skips"), u("entry_corrections"), u("step_limit_hits"), u("fragment_overflow"),
-              u("samples"), u("element_steps"));
+  std::printf(
+      "  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
+      "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
+      u("step"), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(),
+      fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(), fr["composite_ms"].get<double>(),
+      fr["integration_ms"].get<double>(), fr["compositing_ms"].get<double>());
+  std::printf(
+      "    segments/pixel mean %.2f max %.0f; fragments/pixel mean %.2f max %.0f (non-empty "
+      "pixels)\n",
+      fr["segments_per_pixel_mean_rank0"].get<double>(), fr["segments_per_pixel_max"].get<double>(),
+      fr["fragments_per_pixel_mean_rank0"].get<double>(),
+      fr["fragments_per_pixel_max"].get<double>());
+  std::printf(
+      "    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow "
+      "%llu; "
+      "%llu samples, %llu element steps\n",
+      u("lost_rays"), u("grazing_skips"), u("entry_corrections"), u("step_limit_hits"),
+      u("fragment_overflow"), u("samples"), u("element_steps"));
   if (coll_.size() > 1)
     for (const auto& r : fr["ranks"])
-      std::printf("    rank %llu: %llu fragments (%.2f per non-empty pixel), sent %llu bytes (counts %llu at %u bits, "
-                  "fragments %llu), compositing %.1f ms\n",
-                  (unsigned long long)r["rank"].get<uint64_t>(), (unsigned long long)r["fragments"].get<uint64_t>(),
-                  r["fragments_per_nonempty_pixel"].get<double>(), (unsigned long long)r["bytes_sent"].get<uint64_t>(),
-                  (unsigned long long)r["count_bytes_sent"].get<uint64_t>(), r["counter_bits"].get<uint32_t>(),
-                  (unsigned long long)r["fragment_bytes_sent"].get<uint64_t>(), r["composite_ms"].get<double>());
+      std::printf(
+          "    rank %llu: %llu fragments (%.2f per non-empty pixel), sent %llu bytes (counts %llu "
+          "at %u bits, "
+          "fragments %llu), compositing %.1f ms\n",
+          (unsigned long long)r["rank"].get<uint64_t>(),
+          (unsigned long long)r["fragments"].get<uint64_t>(),
+          r["fragments_per_nonempty_pixel"].get<double>(),
+          (unsigned long long)r["bytes_sent"].get<uint64_t>(),
+          (unsigned long long)r["count_bytes_sent"].get<uint64_t>(),
+          r["counter_bits"].get<uint32_t>(),
+          (unsigned long long)r["fragment_bytes_sent"].get<uint64_t>(),
+          r["composite_ms"].get<double>());
 }
 
 void StatsReport::finish(uint64_t validationErrors) {
@@ -149,7 +169,8 @@ void StatsReport::finish(uint64_t validationErrors) {
   }
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";
-    writeBytesAtomically(job_.statsJson, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
+    writeBytesAtomically(job_.statsJson,
+                         {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
   }
   if (errors) throw Error("the Vulkan validation layer reported ", errors, " error(s)");
 }

@@ -28,8 +28,9 @@ PixelCountSummary summarise(const std::vector<uint32_t>& counts);
 class StatsReport {
  public:
   StatsReport(const RenderJob& job, Collectives& coll);
-  void setSetup(double loadSeconds, double prepSeconds, bool fromCache, const prep::PreparedRank& rank,
-                const render::GpuScene& gpu, const std::string& device, const render::RenderSettings& s);
+  void setSetup(double loadSeconds, double prepSeconds, bool fromCache,
+                const prep::PreparedRank& rank, const render::GpuScene& gpu,
+                const std::string& device, const render::RenderSettings& s);
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
   void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer,
                 comp::DeepCompositor& compositor);

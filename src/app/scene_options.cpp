@@ -25,8 +25,14 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                   "Length over which opacity 1 gives optical depth 1 (default: diagonal / 8)");
   cmd->add_option("--step", t["--step"],
                   "Sample distance along rays (default: half the mean element size)");
-  cmd->add_option("--integration", t["--integration"],
-                  "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");
+  cmd->add_option(
+      "--integration", t["--integration"],
+      "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");
+  cmd->add_flag("--shading", raw.shading,
+                "Blinn-Phong shading from the scalar gradient, headlight (off by default)");
+  cmd->add_option("--shading-params", t["--shading-params"],
+                  "Shading coefficients AMBIENT,DIFFUSE,SPECULAR,SHININESS (default "
+                  "0.3,0.7,0.2,20; implies --shading)");
   cmd->add_option("--early-termination", job.earlyTermination,
                   "Stop rays at this opacity (default 0.99)");
   cmd->add_option("--background", t["--background"], "Background colour r,g,b in [0,1]");
@@ -56,6 +62,9 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   if (!get("--lists").empty()) job.lists.mode = parseListMode(get("--lists"));
   if (!get("--encoding").empty()) job.lists.encoding = parseEncoding(get("--encoding"));
   if (!get("--integration").empty()) job.integration = parseIntegration(get("--integration"));
+  if (!get("--shading-params").empty())
+    job.shading = parseShading("--shading-params", get("--shading-params"));
+  if (raw.shading) job.shading.enabled = true;
   job.compact = !raw.plain;
 }
 

@@ -15,6 +15,7 @@ namespace sm::app {
 struct SceneOptionText {
   std::map<std::string, std::string> text;  // option name -> value as given
   bool plain = false;
+  bool shading = false;
 };
 
 // Registers the shared options on `cmd`, in render's order; `timeHelp` describes --time, whose

@@ -33,6 +33,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
           {10, ctx.hasFloat64() ? 1u : 0u},
           {11, scene.shellGeometry() == ShellGeometry::Boxes ? 1u : 0u},
           {12, options.elementExact ? 1u : 0u},
+          {13, options.shading ? 1u : 0u},
           {100, compositor.modeConstant()},
           {101, compositor.encodingConstant()}};
 }

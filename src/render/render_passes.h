@@ -12,8 +12,13 @@ namespace sm::render {
 // Specialization shared by every pass: scene (compaction, element types present), device
 // (float64 available) and the compositor's list mode and encoding.
 // What a frame's settings add to the specialisation.
+// What a frame's pipelines are specialised for besides the scene (DESIGN.md, "pay only for what
+// the scene uses"): each combination is its own pipeline, built on first use.
 struct PassOptions {
   bool elementExact = false;
+  bool shading = false;
+  static constexpr int kCombinations = 4;
+  int index() const { return (elementExact ? 1 : 0) + (shading ? 2 : 0); }
 };
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,

@@ -33,19 +33,15 @@ Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepComp
                       "render stats");
 }
 
-MarchPass& Renderer::marchPass(Integration mode) {
-  auto& p = march_[int(mode)];
-  if (!p)
-    p = std::make_unique<MarchPass>(ctx_, scene_, compositor_,
-                                    PassOptions{mode == Integration::ElementExact});
+MarchPass& Renderer::marchPass(PassOptions options) {
+  auto& p = march_[options.index()];
+  if (!p) p = std::make_unique<MarchPass>(ctx_, scene_, compositor_, options);
   return *p;
 }
 
-FusedPass& Renderer::fusedPass(Integration mode) {
-  auto& p = fused_[int(mode)];
-  if (!p)
-    p = std::make_unique<FusedPass>(ctx_, scene_, compositor_,
-                                    PassOptions{mode == Integration::ElementExact});
+FusedPass& Renderer::fusedPass(PassOptions options) {
+  auto& p = fused_[options.index()];
+  if (!p) p = std::make_unique<FusedPass>(ctx_, scene_, compositor_, options);
   return *p;
 }
 
@@ -112,6 +108,17 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.tfEntries = uint32_t(tf.table.size());
   p.sigmaScale = float(tf.opacityScale / tf.unitDistance);
   p.earlyTermination = float(s.earlyTermination);
+  if (s.shading.enabled) {
+    const Shading& sh = s.shading;
+    if (!(sh.ambient >= 0 && sh.diffuse >= 0 && sh.specular >= 0 && sh.shininess >= 1 &&
+          sh.shininess <= 1024))
+      throw Error("--shading: coefficients must be >= 0 and the shininess in [1, 1024], not ",
+                  sh.ambient, ",", sh.diffuse, ",", sh.specular, ",", sh.shininess);
+    p.shadeAmbient = float(sh.ambient);
+    p.shadeDiffuse = float(sh.diffuse);
+    p.shadeSpecular = float(sh.specular);
+    p.shadeShininess = float(sh.shininess);
+  }
   p.maxElementSteps = s.maxElementSteps;
   p.maxSegments = s.maxSegments;
   comp::DeviceLists lists = compositor_.lists();
@@ -165,7 +172,7 @@ FrameResult Renderer::render(const RenderSettings& s) {
                                    vk::MemoryUse::Device, "transfer function");
   transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
   if (s.integration == Integration::ElementExact) updatePreintegration(s);
-  integration_ = s.integration;
+  passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled};
   gpu::FrameParams p = frameParams(s);
   FrameResult out;
   const gpu::RenderStats zero{};
@@ -213,7 +220,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
     traversal_->recordStore(cmd, params_.address(), s.width, s.height);
     vk::computeBarrier(cmd);
     timestamps_.write(cmd, 1);
-    marchPass(integration_).record(cmd, params_.address(), s.width, s.height);
+    marchPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 2);
   });
   ts = timestamps_.results(3);
@@ -226,7 +233,7 @@ void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameRe
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
-    fusedPass(integration_).record(cmd, params_.address(), s.width, s.height);
+    fusedPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 1);
   });
   auto ts = timestamps_.results(2);

@@ -63,15 +63,15 @@ class Renderer {
   const GpuScene& scene_;
   comp::DeepCompositor& compositor_;
   // Marching pipelines per integration mode, built the first time a frame asks for that mode.
-  MarchPass& marchPass(Integration mode);
-  FusedPass& fusedPass(Integration mode);
+  MarchPass& marchPass(PassOptions options);
+  FusedPass& fusedPass(PassOptions options);
   void updatePreintegration(const RenderSettings& s);
   bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
 
   std::unique_ptr<TraversalPass> traversal_;
-  std::unique_ptr<MarchPass> march_[2];
-  std::unique_ptr<FusedPass> fused_[2];
-  Integration integration_ = Integration::Sampled;  // of the frame being rendered
+  std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
+  std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
+  PassOptions passOptions_;  // of the frame being rendered
   vk::Buffer preintegration_;
   uint64_t preintegrationKey_ = 0;
   PreintegrationTable preintegrationTable_;

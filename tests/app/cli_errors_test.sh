@@ -27,6 +27,7 @@ expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
 expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png
 expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
 expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png
+expect "--shading-params" "$sm" render ok.pvtu --shading-params 0.3,0.7,-1,20 --out a.png
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

@@ -13,18 +13,7 @@
 namespace sm::render {
 namespace {
 
-// Ray/box intersection in double: [t0, t1] of the ray inside [lo, hi]^3, or t1 < t0.
-void rayBox(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double& t0, double& t1) {
-  t0 = 0;
-  t1 = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    double inv = 1.0 / d[a];
-    double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-}
+using test::rayBox;
 
 struct SlabCase {
   mesh::UnstructuredMesh mesh;
