@@ -46,7 +46,9 @@ mesh::UnstructuredMesh cube(CubeSplit split, int n = 1, double size = 1.0);
 // Adds analytic point fields over `steps` time steps, t in [0, 1]:
 //   "linear"  x + 2y + 3z (normalised to the bounds), the same every step;
 //   "shock"   a smoothed planar shock moving through the domain;
-//   "vortex"  a swirling vortex whose centre moves with time.
+//   "vortex"  a swirling vortex whose centre moves with time;
+//   "density" a bow shock, shock layer and swaying wake around a unit body at the origin facing -x
+//             (world units: made for the capsule and the lander).
 void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps);
 
 }  // namespace sm::gen
