@@ -212,7 +212,7 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
   SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
     r.steps += 1u;
     // Enter the next element: decode it from the face crossed, fetch what the last one did not share.
-    uint type = smRefType(w.next), index = smRefIndex(w.next);
+    uint type = specialisedType(smRefType(w.next)), index = smRefIndex(w.next);
     uint v[8];
     int entry = decodeElement(sc, type, index, w.k, w.kn, v);
     if (entry < 0) {

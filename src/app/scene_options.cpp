@@ -28,6 +28,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option(
       "--integration", t["--integration"],
       "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");
+  cmd->add_flag("--all-type-pipelines", job.allTypePipelines,
+                "Benchmarks: pipelines for every element type whatever the mesh holds")
+      ->group("");  // hidden: measures what specialisation saves
   cmd->add_flag("--shading", raw.shading,
                 "Blinn-Phong shading from the scalar gradient, headlight (off by default)");
   cmd->add_option("--shading-params", t["--shading-params"],

@@ -29,7 +29,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
                                                   const comp::DeepCompositor& compositor,
                                                   PassOptions options) {
   return {{0, scene.compact() ? 1u : 0u},
-          {1, scene.typesPresent()},
+          {1, options.allTypes ? 0xFu : scene.typesPresent()},
           {10, ctx.hasFloat64() ? 1u : 0u},
           {11, scene.shellGeometry() == ShellGeometry::Boxes ? 1u : 0u},
           {12, options.elementExact ? 1u : 0u},

@@ -17,8 +17,9 @@ namespace sm::render {
 struct PassOptions {
   bool elementExact = false;
   bool shading = false;
-  static constexpr int kCombinations = 4;
-  int index() const { return (elementExact ? 1 : 0) + (shading ? 2 : 0); }
+  bool allTypes = false;  // benchmarks: as if every element type were present (no type folding)
+  static constexpr int kCombinations = 8;
+  int index() const { return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0); }
 };
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,

@@ -29,6 +29,9 @@ struct RenderSettings {
   double dt = 0.01;  // sample spacing along rays, world units
   Integration integration = Integration::Sampled;
   Shading shading;
+  // Benchmarks only: pipelines specialised for every element type, whatever the scene holds, to
+  // measure what specialisation saves.
+  bool allTypePipelines = false;
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
   uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)

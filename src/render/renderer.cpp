@@ -172,7 +172,8 @@ FrameResult Renderer::render(const RenderSettings& s) {
                                    vk::MemoryUse::Device, "transfer function");
   transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
   if (s.integration == Integration::ElementExact) updatePreintegration(s);
-  passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled};
+  passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled,
+                             s.allTypePipelines};
   gpu::FrameParams p = frameParams(s);
   FrameResult out;
   const gpu::RenderStats zero{};
