@@ -9,5 +9,6 @@ namespace sm::app {
 void registerInfo(CLI::App& app);      // cmd_info.cpp
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
 void registerRender(CLI::App& app);    // cmd_render.cpp
+void registerBench(CLI::App& app);     // cmd_bench.cpp (subcommands: bench/registry.cpp)
 
 }  // namespace sm::app
