@@ -152,7 +152,7 @@ void runPrepBench(const PrepArgs& a) {
     if (m["vtk"].contains("vtk_version")) report["vtk_version"] = m["vtk"]["vtk_version"];
     report["meshes"].push_back(m);
   }
-  report["machine_after"] = machineJson()["load_average"];
+  report["load_average_after"] = machineJson()["load_average"];
   printTables(report);
   if (!a.json.empty()) writeJsonFile(a.json, report);
 }

@@ -29,9 +29,10 @@ struct RenderArgs {
   std::string mesh;  // "" = the demo capsule (ci/demo.sh's options), generated under workDir
   std::string field = "vortex", colormap = "cool-to-warm", view = "iso";
   double fovy = 30, opacityScale = 1, earlyTermination = 0.99, step = 0;  // step 0: default
-  std::string sizes = "512,1024", references = "grid,converged", integrators = "linear,partial";
+  std::string sizes = "512,1024", references = "grid,converged",
+              integrators = "preintegration,linear";
   std::string coarser = "2,4";  // extra compacted runs at dt times these
-  int runs = 5, vtkRuns = 3;
+  int runs = 3, vtkRuns = 3;
   double refTolerance = 1e-4;
   std::string workDir = "out/bench", json, device, python = defaultPython();
   bool noVtk = false;
@@ -229,6 +230,9 @@ void runRenderBench(const RenderArgs& a) {
   for (const std::string& r : splitList(a.references))
     if (r != "grid" && r != "converged")
       throw Error("--references: '", r, "' (use grid, converged)");
+  for (const std::string& i : splitList(a.integrators))
+    if (i != "linear" && i != "partial" && i != "preintegration" && i != "homogeneous")
+      throw Error("--integrators: '", i, "' (use linear, partial, preintegration, homogeneous)");
   const auto sizes = parseSizes("--sizes", a.sizes);
   std::filesystem::create_directories(a.workDir);
   nlohmann::json report;

@@ -31,6 +31,7 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
     m.compositeMs.push_back(frame.timings.compositeMs);
   }
   m.samples = frame.counters.samples;
+  m.elementSteps = frame.counters.elementSteps;
   m.segments = frame.counters.segments;
   m.fragments = frame.counters.fragments;
   m.lostRays = frame.counters.lostRays;
@@ -49,6 +50,9 @@ nlohmann::json toJson(const RenderMeasurement& m) {
   j["frames_per_second"] = total > 0 ? 1e3 / total : 0.0;
   j["samples"] = m.samples;
   j["samples_per_second"] = total > 0 ? double(m.samples) / (total * 1e-3) : 0.0;
+  // Elements the marcher walked through: its cost grows with these as much as with samples.
+  j["element_steps"] = m.elementSteps;
+  j["element_steps_per_second"] = total > 0 ? double(m.elementSteps) / (total * 1e-3) : 0.0;
   j["segments"] = m.segments;
   j["fragments"] = m.fragments;
   j["lost_rays"] = m.lostRays;

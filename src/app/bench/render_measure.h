@@ -15,9 +15,9 @@ namespace sm::app::bench {
 struct RenderMeasurement {
   double setupMs = 0;  // compositor and renderer construction (pipelines)
   double coldMs = 0;   // the first frame: Mesa compiles shaders on first dispatch
-  std::vector<double> totalMs, traversalMs, scanMs, marchMs, compositeMs;  // warm frames
-  uint64_t samples = 0, segments = 0, fragments = 0, lostRays = 0;         // per frame
-  scene::Image image;                                                      // the last frame
+  std::vector<double> totalMs, traversalMs, scanMs, marchMs, compositeMs;             // warm frames
+  uint64_t samples = 0, elementSteps = 0, segments = 0, fragments = 0, lostRays = 0;  // per frame
+  scene::Image image;  // the last frame
 };
 
 // A first (cold) frame, then `runs` warm frames of the same view.

@@ -94,19 +94,22 @@ void speedRows(Table& t, const nlohmann::json& s, const nlohmann::json* vtkSize)
     const auto& st = m["stages_ms"];
     t.add({size, concat("shellmarch ", mode), ms(m["cold_first_frame_ms"]), ms(m["warm_ms"]),
            fixed(m["frames_per_second"].get<double>(), 2),
-           fixed(m["samples_per_second"].get<double>() / 1e6, 1), ms(st["traversal"]),
+           fixed(m["samples_per_second"].get<double>() / 1e6, 1),
+           fixed(m["element_steps_per_second"].get<double>() / 1e6, 1), ms(st["traversal"]),
            ms(st["scan"]), ms(st["march"]), ms(st["composite"])});
   }
   for (const auto& m : s["shellmarch"]["compacted_coarser"])
     t.add({size, m["label"].get<std::string>(), ms(m["cold_first_frame_ms"]), ms(m["warm_ms"]),
            fixed(m["frames_per_second"].get<double>(), 2),
-           fixed(m["samples_per_second"].get<double>() / 1e6, 1), ms(m["stages_ms"]["traversal"]),
-           ms(m["stages_ms"]["scan"]), ms(m["stages_ms"]["march"]),
+           fixed(m["samples_per_second"].get<double>() / 1e6, 1),
+           fixed(m["element_steps_per_second"].get<double>() / 1e6, 1),
+           ms(m["stages_ms"]["traversal"]), ms(m["stages_ms"]["scan"]), ms(m["stages_ms"]["march"]),
            ms(m["stages_ms"]["composite"])});
   if (!vtkSize) return;
   for (const auto& v : (*vtkSize)["integrators"])
     t.add({size, "VTK " + v["integrator"].get<std::string>(), ms(v["cold_first_frame_ms"]),
-           ms(v["warm_ms"]), fixed(1e3 / v["warm_ms"].get<double>(), 2), "-", "-", "-", "-", "-"});
+           ms(v["warm_ms"]), fixed(1e3 / v["warm_ms"].get<double>(), 2), "-", "-", "-", "-", "-",
+           "-"});
 }
 
 void errorRows(Table& t, const nlohmann::json& s) {
@@ -196,9 +199,10 @@ void addErrorsAndGoals(nlohmann::json& report, const std::vector<RenderImages>& 
 
 void printRenderTables(const nlohmann::json& r) {
   printSetup(r);
-  Table speed({"size", "renderer", "cold first frame ms", "warm frame ms", "frames/s",
-               "M samples/s", "traversal ms", "scan ms", "march ms", "composite ms"},
-              2);
+  Table speed(
+      {"size", "renderer", "cold first frame ms", "warm frame ms", "frames/s", "M samples/s",
+       "M element steps/s", "traversal ms", "scan ms", "march ms", "composite ms"},
+      2);
   Table errors({"size", "image", "RMSE vs grid", "max abs", "PSNR dB", "RMSE vs converged",
                 "max abs", "PSNR dB"},
                2);
