@@ -1,11 +1,23 @@
 #include "app/bench/render_measure.h"
 
+#include <sys/resource.h>
+
 #include "app/bench/bench_common.h"
 #include "common/timer.h"
 #include "compositor/deep_compositor.h"
 #include "render/renderer.h"
 
 namespace sm::app::bench {
+namespace {
+
+double processCpuMs() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  auto ms = [](const timeval& t) { return double(t.tv_sec) * 1e3 + double(t.tv_usec) * 1e-3; };
+  return ms(u.ru_utime) + ms(u.ru_stime);
+}
+
+}  // namespace
 
 RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& scene,
                                 const render::RenderSettings& s, int runs) {
@@ -17,7 +29,9 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
   render::FrameResult frame;
   for (int i = 0; i <= runs; ++i) {
     Timer wall;
+    const double cpu0 = processCpuMs();
     frame = renderer.render(s);
+    const double cpu = processCpuMs() - cpu0;
     // Wall clock around render() (FrameTimings::totalMs is the same span measured inside).
     const double ms = wall.ms();
     if (i == 0) {
@@ -25,6 +39,7 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
       continue;
     }
     m.totalMs.push_back(ms);
+    m.cpuMs.push_back(cpu);
     m.traversalMs.push_back(frame.timings.traversalMs);
     m.scanMs.push_back(frame.timings.scanMs);
     m.marchMs.push_back(frame.timings.marchMs);
@@ -47,6 +62,7 @@ nlohmann::json toJson(const RenderMeasurement& m) {
   j["cold_first_frame_ms"] = m.coldMs;
   j["warm_runs"] = m.totalMs.size();
   j["warm_ms"] = total;
+  j["warm_cpu_ms"] = median(m.cpuMs);
   j["frames_per_second"] = total > 0 ? 1e3 / total : 0.0;
   j["samples"] = m.samples;
   j["samples_per_second"] = total > 0 ? double(m.samples) / (total * 1e-3) : 0.0;

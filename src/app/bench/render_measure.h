@@ -15,7 +15,10 @@ namespace sm::app::bench {
 struct RenderMeasurement {
   double setupMs = 0;  // compositor and renderer construction (pipelines)
   double coldMs = 0;   // the first frame: Mesa compiles shaders on first dispatch
-  std::vector<double> totalMs, traversalMs, scanMs, marchMs, compositeMs;             // warm frames
+  std::vector<double> totalMs, traversalMs, scanMs, marchMs, compositeMs;  // warm frames
+  // Processor time of this process per warm frame (lavapipe's threads included): unlike the wall
+  // clock it does not grow when other processes share the cores.
+  std::vector<double> cpuMs;
   uint64_t samples = 0, elementSteps = 0, segments = 0, fragments = 0, lostRays = 0;  // per frame
   scene::Image image;  // the last frame
 };

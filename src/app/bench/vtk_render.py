@@ -13,10 +13,25 @@ Exit status 3 when VTK cannot be imported.
 import argparse
 import json
 import os
+import resource
 import statistics
 import sys
+import time
 
 from vtk_common import read_pieces, timed, weld
+
+
+def cpu_seconds():
+    """Processor time of this process (VTK's ray casting threads and llvmpipe's included)."""
+    u = resource.getrusage(resource.RUSAGE_SELF)
+    return u.ru_utime + u.ru_stime
+
+
+def timed_frame(window):
+    """Wall and processor seconds of one frame."""
+    c, t = cpu_seconds(), time.perf_counter()
+    window.Render()
+    return time.perf_counter() - t, cpu_seconds() - c
 
 INTEGRATORS = {
     "linear": "vtkUnstructuredGridLinearRayIntegrator",
@@ -99,12 +114,14 @@ def render_size(vtk, window, renderer, mapper, size, job):
     results = []
     for name in job["integrators"]:
         mapper.SetRayIntegrator(getattr(vtk, INTEGRATORS[name])())
-        _, cold = timed(window.Render)
-        warm = [timed(window.Render)[1] for _ in range(job["runs"])]
+        cold, _ = timed_frame(window)
+        frames = [timed_frame(window) for _ in range(job["runs"])]
+        warm, warm_cpu = [f[0] for f in frames], [f[1] for f in frames]
         image = os.path.join(job["out_dir"], f"vtk_{name}_{size['width']}x{size['height']}.png")
         save_rgba(vtk, window, image)
         results.append({"integrator": name, "class": INTEGRATORS[name],
                         "cold_first_frame_ms": cold * 1e3, "warm_ms": statistics.median(warm) * 1e3,
+                        "warm_cpu_ms": statistics.median(warm_cpu) * 1e3,
                         "warm_ms_all": [w * 1e3 for w in warm], "image": image})
     return {"width": size["width"], "height": size["height"], "integrators": results}
 
