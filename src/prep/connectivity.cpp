@@ -42,6 +42,22 @@ FaceKey makeKey(const uint32_t* f, uint32_t n, uint64_t slot) {
   return FaceKey{b, c, d, slot};
 }
 
+// A face's vertex ids in any order (matching compares sets). Tet slot k is the face opposite the
+// vertex of rank k: the other three of the sorted four, found without FaceSlots::vtkFace's rank
+// search, which made up a sixth of preparation's time (docs/BENCHMARKS.md).
+inline uint32_t faceVertexSet(uint32_t type, const uint32_t* v, uint32_t slot, uint32_t out[4]) {
+  if (type != gpu::SM_TET) return FaceSlots::faceVertices(type, v, slot, out);
+  uint32_t s[4] = {v[0], v[1], v[2], v[3]};
+  order2(s[0], s[1]);
+  order2(s[2], s[3]);
+  order2(s[0], s[2]);
+  order2(s[1], s[3]);
+  order2(s[1], s[2]);
+  for (uint32_t i = 0, n = 0; i < 4; ++i)
+    if (i != slot) out[n++] = s[i];
+  return 3;
+}
+
 // Calls fn(globalSlot, faceVertexIds, n) for every face slot in order. Tet faces are listed by
 // vertex set only (their winding is irrelevant for matching).
 template <typename Fn>
@@ -53,7 +69,7 @@ void forEachFace(const ElementArrays& elements, const FaceSlots& slots, Fn&& fn)
     for (uint64_t e = 0; e < slots.elements(t); ++e, v += nv) {
       for (uint32_t s = 0; s < nf; ++s, ++g) {
         uint32_t f[4];
-        uint32_t n = FaceSlots::faceVertices(t, v, s, f);
+        uint32_t n = faceVertexSet(t, v, s, f);
         fn(g, f, n);
       }
     }
@@ -109,7 +125,7 @@ ConnectivityStats computeConnectivity(const ElementArrays& elements, uint64_t nu
       const uint32_t* ev =
           elements[s.type].data() + uint64_t(s.element) * gpu::SM_NUM_VERTS[s.type];
       uint32_t f[4];
-      uint32_t n = FaceSlots::faceVertices(s.type, ev, s.slot, f);
+      uint32_t n = faceVertexSet(s.type, ev, s.slot, f);
       keys.push_back(makeKey(f, n, bucket[i]));
     }
     // Buckets hold a few dozen faces: insertion sort beats std::sort here.

@@ -11,14 +11,6 @@ FaceSlots::FaceSlots(const ElementArrays& elements) {
   }
 }
 
-FaceSlots::Slot FaceSlots::decode(uint64_t g) const {
-  uint32_t t = 0;
-  while (g >= begin_[t + 1]) ++t;
-  uint64_t local = g - begin_[t];
-  uint32_t nf = gpu::SM_NUM_FACES[t];
-  return {t, uint32_t(local / nf), uint32_t(local % nf)};
-}
-
 uint32_t FaceSlots::vtkFace(uint32_t type, const uint32_t* v, uint32_t slot) {
   if (type != gpu::SM_TET) return slot;
   // The vertex whose rank among the four ids is `slot`.

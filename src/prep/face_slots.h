@@ -27,7 +27,25 @@ class FaceSlots {
     uint32_t element;
     uint32_t slot;
   };
-  Slot decode(uint64_t g) const;
+  // Inline, with constant divisors: connectivity decodes every face slot, and an out-of-line call
+  // dividing by a divisor read from a table was an eighth of preparation's time
+  // (docs/BENCHMARKS.md).
+  Slot decode(uint64_t g) const {
+    uint32_t t = 0;
+    while (g >= begin_[t + 1]) ++t;
+    const uint64_t local = g - begin_[t];
+    static_assert(gpu::SM_NUM_FACES[gpu::SM_TET] == 4 && gpu::SM_NUM_FACES[gpu::SM_PYR] == 5 &&
+                  gpu::SM_NUM_FACES[gpu::SM_WED] == 5 && gpu::SM_NUM_FACES[gpu::SM_HEX] == 6);
+    switch (t) {
+      case gpu::SM_TET:
+        return {t, uint32_t(local / 4), uint32_t(local % 4)};
+      case gpu::SM_PYR:
+      case gpu::SM_WED:
+        return {t, uint32_t(local / 5), uint32_t(local % 5)};
+      default:
+        return {t, uint32_t(local / 6), uint32_t(local % 6)};
+    }
+  }
 
   // The VTK face number behind slot `slot` of an element with ids v (identity except for tets).
   static uint32_t vtkFace(uint32_t type, const uint32_t* v, uint32_t slot);

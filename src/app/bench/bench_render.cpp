@@ -1,0 +1,323 @@
+// shellmarch bench render [--mesh FILE | the demo capsule, generated] [--sizes 512,1024] [--runs N]
+//                         [--vtk-runs N] [--integrators linear,partial] [--json FILE] ...
+// Frames and samples per second per stage, compacted vs plain, on this machine's Vulkan device;
+// VTK's unstructured-grid ray cast mapper on the same mesh, view, size and transfer function in the
+// same run; both images' error against the CPU reference (docs/BENCHMARKS.md).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "app/bench/bench_common.h"
+#include "app/bench/reference_images.h"
+#include "app/bench/registry.h"
+#include "app/bench/render_measure.h"
+#include "app/bench/render_report.h"
+#include "app/cli_parsers.h"
+#include "app/rank_pipeline.h"
+#include "app/rank_share.h"
+#include "common/error.h"
+#include "common/file_util.h"
+#include "common/timer.h"
+#include "prep/memory_report.h"
+#include "render/gpu_scene.h"
+
+namespace sm::app::bench {
+namespace {
+
+struct RenderArgs {
+  std::string mesh;  // "" = the demo capsule (ci/demo.sh's options), generated under workDir
+  std::string field = "vortex", colormap = "cool-to-warm", view = "iso";
+  double fovy = 30, opacityScale = 1, earlyTermination = 0.99, step = 0;  // step 0: default
+  std::string sizes = "512,1024", references = "grid,converged",
+              integrators = "preintegration,linear";
+  std::string coarser = "2,4";  // extra compacted runs at dt times these
+  int runs = 3, vtkRuns = 3;
+  double refTolerance = 1e-4;
+  std::string workDir = "out/bench", json, device, python = defaultPython();
+  bool noVtk = false;
+};
+
+// Everything measured once per run: the mesh on the host (for the reference) and on the device,
+// compacted and plain.
+struct Scenes {
+  RankShare share;  // whole mesh (fields kept; geometry moved into preparation)
+  mesh::UnstructuredMesh refMesh;
+  std::vector<float> values;  // field step 0 in mesh order
+  std::pair<double, double> range;
+  PreparedShare compact, plain;
+  nlohmann::json setup;
+};
+
+std::string demoMesh(const RenderArgs& a) {
+  if (!a.mesh.empty()) return a.mesh;
+  gen::CfdMeshOptions o;  // as ci/demo.sh
+  o.targetElements = 300000;
+  o.clusters = 8;
+  o.steps = 4;
+  o.hexBlock = true;
+  return generatedMesh(a.workDir, o);
+}
+
+Scenes loadScenes(const RenderArgs& a, const std::string& path) {
+  Scenes sc;
+  SingleProcess coll;
+  ShareOptions so;
+  so.read.fields = {a.field};
+  Timer t;
+  sc.share = loadRankShare(path, so, coll);
+  sc.setup["load_seconds"] = t.seconds();
+  const mesh::Field* f = sc.share.mesh.findField(a.field);
+  if (!f) throw Error("--field: ", path, " has no point field '", a.field, "'");
+  sc.values = f->steps.front();
+  mesh::Range r = mesh::fieldRange(*f, 0);
+  sc.range = r.empty || !(r.lo < r.hi) ? std::pair{0.0, 1.0} : std::pair{r.lo, r.hi};
+  sc.refMesh = sc.share.mesh;
+  RankShare plainShare = sc.share;
+  t.reset();
+  sc.compact = prepareShare(sc.share, prep::PrepOptions{true}, "", 0, 1);
+  sc.setup["prepare_compacted_seconds"] = t.seconds();
+  t.reset();
+  sc.plain = prepareShare(plainShare, prep::PrepOptions{false}, "", 0, 1);
+  sc.setup["prepare_plain_seconds"] = t.seconds();
+  sc.setup["elements"] = sc.compact.rank.numElements();
+  sc.setup["vertices"] = sc.compact.rank.numVertices();
+  sc.setup["shell_triangles"] = sc.compact.rank.numShellTriangles();
+  sc.setup["array"] = f->numSteps() > 1 ? a.field + "@t0" : a.field;
+  return sc;
+}
+
+render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w, int h) {
+  render::RenderSettings s;
+  s.width = w;
+  s.height = h;
+  s.camera = scene::frameBounds(sc.share.wholeBounds, scene::parseViewPreset(a.view), double(w) / h,
+                                a.fovy);
+  s.transferFunction = scene::makeTransferFunction(a.colormap);
+  s.transferFunction.lo = sc.range.first;
+  s.transferFunction.hi = sc.range.second;
+  s.transferFunction.opacityScale = a.opacityScale;
+  s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
+  s.dt = a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean());
+  s.earlyTermination = a.earlyTermination;
+  return s;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  size_t b = 0;
+  while (b <= s.size()) {
+    size_t e = s.find(',', b);
+    if (e == std::string::npos) e = s.size();
+    if (e > b) out.push_back(s.substr(b, e - b));
+    b = e + 1;
+  }
+  return out;
+}
+
+// Compacted frames at coarser sample spacings: shellmarch's speed at a given error, so that the
+// goals can compare with VTK at equal or lower error (VTK's cost does not depend on a step).
+void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::GpuScene& compact,
+                    const render::RenderSettings& s, nlohmann::json& j, RenderImages& images) {
+  j["shellmarch"]["compacted_coarser"] = nlohmann::json::array();
+  for (const std::string& item : splitList(a.coarser)) {
+    const double k = parsePositive("--coarser", item);
+    render::RenderSettings sk = s;
+    sk.dt *= k;
+    RenderMeasurement m = measureRender(ctx, compact, sk, a.runs);
+    nlohmann::json mj = toJson(m);
+    mj["dt_scale"] = k;
+    mj["dt"] = sk.dt;
+    mj["label"] = concat("shellmarch compacted dt×", item);
+    j["shellmarch"]["compacted_coarser"].push_back(mj);
+    images.renderers.emplace_back(mj["label"].get<std::string>(), std::move(m.image));
+  }
+}
+
+// The CPU references for this view, computed once and kept under the work directory.
+void addReferences(const RenderArgs& a, const Scenes& sc, const ref::ReferenceRenderer& ref,
+                   const render::RenderSettings& s, nlohmann::json& j, RenderImages& images) {
+  const std::string cacheDir = joinPath(a.workDir, "reference");
+  for (const std::string& mode : splitList(a.references)) {
+    ref::RenderSettings rs;
+    rs.dt = s.dt;
+    rs.mode = mode == "grid" ? ref::RenderMode::Grid : ref::RenderMode::Converged;
+    rs.tolerance = a.refTolerance;
+    ReferenceImage r = referenceImage(ref, sc.values, s.camera, s.width, s.height,
+                                      s.transferFunction, rs, cacheDir);
+    j["references"][mode] = {{"seconds", r.seconds}, {"cached", r.cached}, {"file", r.path}};
+    scene::writePngRgba(
+        joinPath(a.workDir, concat("reference_", mode, "_", s.width, "x", s.height, ".png")),
+        r.image);
+    images.references[mode] = std::move(r.image);
+  }
+}
+
+// The GPU frames of both scenes at one size, then the references (CPU) for that view.
+nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, const vk::Context& ctx,
+                           const render::GpuScene& compact, const render::GpuScene& plain,
+                           const ref::ReferenceRenderer& ref, int w, int h, RenderImages& images) {
+  render::RenderSettings s = settingsFor(a, sc, w, h);
+  std::fprintf(stderr, "rendering %dx%d: compacted, plain, coarser steps (%d warm frames each)\n",
+               w, h, a.runs);
+  RenderMeasurement mc = measureRender(ctx, compact, s, a.runs);
+  RenderMeasurement mp = measureRender(ctx, plain, s, a.runs);
+  nlohmann::json j;
+  j["width"] = w;
+  j["height"] = h;
+  j["camera"] = {{"eye", {s.camera.eye.x, s.camera.eye.y, s.camera.eye.z}},
+                 {"at", {s.camera.at.x, s.camera.at.y, s.camera.at.z}},
+                 {"up", {s.camera.up.x, s.camera.up.y, s.camera.up.z}},
+                 {"fovy_deg", s.camera.fovyDeg}};
+  j["dt"] = s.dt;
+  j["shellmarch"]["compacted"] = toJson(mc);
+  j["shellmarch"]["plain"] = toJson(mp);
+  // Premultiplied RGBA PNGs like VTK's, to look at side by side.
+  scene::writePngRgba(joinPath(a.workDir, concat("shellmarch_compacted_", w, "x", h, ".png")),
+                      mc.image);
+  images.renderers = {{"shellmarch compacted", std::move(mc.image)},
+                      {"shellmarch plain", std::move(mp.image)}};
+  measureCoarser(a, ctx, compact, s, j, images);
+  addReferences(a, sc, ref, s, j, images);
+  return j;
+}
+
+nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+                      const nlohmann::json& sizes) {
+  render::RenderSettings s = settingsFor(a, sc, 1, 1);
+  const auto& tf = s.transferFunction;
+  nlohmann::json table = nlohmann::json::array();
+  for (const glm::vec4& e : tf.table) table.push_back({e.r, e.g, e.b, e.a});
+  nlohmann::json job;
+  job["mesh"] = std::filesystem::absolute(mesh).string();
+  job["array"] = sc.setup["array"];
+  job["runs"] = a.vtkRuns;
+  job["integrators"] = splitList(a.integrators);
+  job["out_dir"] = std::filesystem::absolute(a.workDir).string();
+  job["tf"] = {{"lo", tf.lo},
+               {"hi", tf.hi},
+               {"table", table},
+               {"opacity_scale", tf.opacityScale},
+               {"unit_distance", tf.unitDistance}};
+  for (const auto& sz : sizes)
+    job["sizes"].push_back(
+        {{"width", sz["width"]}, {"height", sz["height"]}, {"view", sz["camera"]}});
+  return job;
+}
+
+nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+                      const nlohmann::json& sizes) {
+  if (a.noVtk) return {{"available", false}, {"reason", "--no-vtk"}};
+  const std::string jobPath = joinPath(a.workDir, "vtk_render_job.json");
+  writeJsonFile(jobPath, vtkJob(a, sc, mesh, sizes));
+  std::fprintf(stderr, "rendering with VTK (%d warm frames per size and integrator)\n", a.vtkRuns);
+  PeerRun run = runPeer({a.python,
+                         "vtk_render.py",
+                         {"--job", jobPath},
+                         joinPath(a.workDir, "vtk_render.json"),
+                         joinPath(a.workDir, "vtk_render.log"),
+                         true});
+  if (!run.ok) {
+    std::fprintf(stderr, "VTK peer not measured: %s\n", run.error.c_str());
+    return {{"available", false}, {"reason", run.error}};
+  }
+  run.result["available"] = true;
+  return run.result;
+}
+
+void runRenderBench(const RenderArgs& a) {
+  if (a.runs < 1 || a.vtkRuns < 1) throw Error("--runs and --vtk-runs: must be at least 1");
+  for (const std::string& r : splitList(a.references))
+    if (r != "grid" && r != "converged")
+      throw Error("--references: '", r, "' (use grid, converged)");
+  for (const std::string& i : splitList(a.integrators))
+    if (i != "linear" && i != "partial" && i != "preintegration" && i != "homogeneous")
+      throw Error("--integrators: '", i, "' (use linear, partial, preintegration, homogeneous)");
+  const auto sizes = parseSizes("--sizes", a.sizes);
+  std::filesystem::create_directories(a.workDir);
+  nlohmann::json report;
+  report["benchmark"] = "render";
+  report["machine"] = machineJson();
+  const std::string mesh = demoMesh(a);
+  Scenes sc = loadScenes(a, mesh);
+  Timer t;
+  ref::ReferenceRenderer ref(sc.refMesh);
+  sc.setup["reference_bvh_seconds"] = t.seconds();
+  vk::ContextOptions vo;
+  vo.device = a.device;
+  vk::Context ctx(vo);
+  t.reset();
+  render::GpuScene compact(ctx, sc.compact.rank), plain(ctx, sc.plain.rank);
+  compact.setScalars(fieldStep(sc.share.mesh, sc.compact.rank, a.field, 0));
+  plain.setScalars(fieldStep(sc.share.mesh, sc.plain.rank, a.field, 0));
+  sc.setup["upload_seconds_both"] = t.seconds();
+  sc.setup["device_bytes"] = {{"compacted", compact.deviceBytes()}, {"plain", plain.deviceBytes()}};
+  auto memC = prep::memoryReport(sc.compact.rank);
+  sc.setup["element_bytes"] = {{"compacted", memC.compactedElements},
+                               {"plain", memC.plainElements}};
+  report["mesh"] = mesh;
+  report["device"] = ctx.deviceName();
+  report["setup"] = sc.setup;
+  report["options"] = {{"field", a.field},
+                       {"colormap", a.colormap},
+                       {"view", a.view},
+                       {"runs", a.runs},
+                       {"vtk_runs", a.vtkRuns},
+                       {"early_termination", a.earlyTermination},
+                       {"reference_tolerance", a.refTolerance},
+                       {"opacity_scale", a.opacityScale}};
+  report["env"] = {
+      {"LP_NUM_THREADS", std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : ""}};
+  std::vector<RenderImages> images(sizes.size());
+  for (size_t i = 0; i < sizes.size(); ++i)
+    report["sizes"].push_back(
+        measureSize(a, sc, ctx, compact, plain, ref, sizes[i].first, sizes[i].second, images[i]));
+  report["vtk"] = runVtk(a, sc, mesh, report["sizes"]);
+  addErrorsAndGoals(report, images);
+  report["load_average_after"] = machineJson()["load_average"];
+  printRenderTables(report);
+  if (!a.json.empty()) writeJsonFile(a.json, report);
+  if (ctx.validationErrors())
+    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+}
+
+}  // namespace
+
+void configureRenderBench(CLI::App& cmd) {
+  auto a = std::make_shared<RenderArgs>();
+  cmd.add_option("--mesh", a->mesh, "Mesh to render (default: the demo capsule, generated once)");
+  cmd.add_option("--field", a->field, "Point field (step 0)")->capture_default_str();
+  cmd.add_option("--colormap", a->colormap, "Colour map")->capture_default_str();
+  cmd.add_option("--view", a->view, "Framing view: iso, +x, -x, ...")->capture_default_str();
+  cmd.add_option("--fovy", a->fovy, "Vertical field of view, degrees")->capture_default_str();
+  cmd.add_option("--opacity-scale", a->opacityScale, "Multiplies the opacity map")
+      ->capture_default_str();
+  cmd.add_option("--step", a->step, "Sample distance (default: half the mean element size)");
+  cmd.add_option("--early-termination", a->earlyTermination, "shellmarch's early ray termination")
+      ->capture_default_str();
+  cmd.add_option("--sizes", a->sizes, "Image sizes: N (square) or WxH, comma separated")
+      ->capture_default_str();
+  cmd.add_option(
+         "--coarser", a->coarser,
+         "Also render compacted at the step times these (speed at equal error; '' for none)")
+      ->capture_default_str();
+  cmd.add_option("--runs", a->runs, "Warm shellmarch frames per case (after one cold frame)")
+      ->capture_default_str();
+  cmd.add_option("--vtk-runs", a->vtkRuns, "Warm VTK frames per case")->capture_default_str();
+  cmd.add_option("--integrators", a->integrators,
+                 "VTK ray integrators: linear, partial, preintegration, homogeneous")
+      ->capture_default_str();
+  cmd.add_option("--references", a->references, "CPU references: grid and/or converged")
+      ->capture_default_str();
+  cmd.add_option("--ref-tolerance", a->refTolerance, "Converged reference: error per channel")
+      ->capture_default_str();
+  cmd.add_option("--work-dir", a->workDir, "Generated mesh, reference images, VTK outputs")
+      ->capture_default_str();
+  cmd.add_option("--device", a->device, "Vulkan device index or name substring");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--python", a->python, "Python with VTK (python3-vtk9)")->capture_default_str();
+  cmd.add_flag("--no-vtk", a->noVtk, "Skip the VTK peer");
+  cmd.callback([a] { runRenderBench(*a); });
+}
+
+}  // namespace sm::app::bench

@@ -1,0 +1,19 @@
+#include "app/bench/registry.h"
+
+namespace sm::app::bench {
+
+const std::vector<BenchCommand>& benchCommands() {
+  static const std::vector<BenchCommand> all = {
+      {"prep",
+       "Load and preparation throughput (elements/s per stage) and peak memory on generated "
+       "meshes, next to VTK's surface extraction",
+       configurePrepBench},
+      {"render",
+       "Frames and samples per second per stage, compacted vs plain, next to VTK's unstructured "
+       "ray cast mapper, with both images' error against the CPU reference",
+       configureRenderBench},
+  };
+  return all;
+}
+
+}  // namespace sm::app::bench

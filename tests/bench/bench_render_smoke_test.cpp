@@ -1,0 +1,53 @@
+// `shellmarch bench render` on a tiny mesh at 32²: it runs (validation on), prints its tables and
+// writes the promised JSON, VTK's images compared too when VTK is there.
+#include <gtest/gtest.h>
+
+#include "bench_smoke_util.h"
+#include "support/test_support.h"
+
+namespace sm::test {
+namespace {
+
+TEST(BenchRender, TinyMeshWritesPromisedJson) {
+  const std::string dir = outputDir("bench_render");
+  const std::string mesh = writeTinyMesh(dir);
+  const std::string json = dir + "/render.json";
+  std::string log;
+  ASSERT_EQ(runTool({"bench", "render", "--mesh", mesh, "--sizes", "32,24x16", "--runs", "2",
+                     "--vtk-runs", "1", "--integrators", "linear", "--work-dir", dir + "/work",
+                     "--json", json},
+                    dir, "render", log),
+            0)
+      << log;
+  EXPECT_NE(log.find("M samples/s"), std::string::npos) << log;
+  nlohmann::json j = readJson(json);
+  ASSERT_FALSE(j.is_discarded()) << json;
+  std::vector<std::string> keys = {"machine.cpu",        "device",        "setup.elements",
+                                   "setup.load_seconds", "vtk.available", "goals",
+                                   "sizes.1.width"};
+  for (const char* mode : {"compacted", "plain"})
+    for (const char* k :
+         {"cold_first_frame_ms", "warm_ms", "frames_per_second", "samples_per_second",
+          "stages_ms.traversal", "stages_ms.scan", "stages_ms.march", "stages_ms.composite"})
+      keys.push_back(std::string("sizes.0.shellmarch.") + mode + "." + k);
+  for (const char* img :
+       {"shellmarch compacted", "shellmarch plain", "reference rounded to 8 bits"})
+    for (const char* ref : {"grid", "converged"})
+      for (const char* k : {"rmse", "max_abs", "psnr"})
+        keys.push_back(std::string("sizes.0.errors.") + img + "." + ref + "." + k);
+  EXPECT_EQ(missingKeys(j, keys), std::vector<std::string>{});
+  // shellmarch samples the grid the reference samples: its image is the grid reference's.
+  EXPECT_LT(j["sizes"][0]["errors"]["shellmarch compacted"]["grid"]["max_abs"].get<double>(), 0.02);
+  EXPECT_EQ(j["sizes"][0]["compacted_vs_plain_max_abs"].get<double>(), 0.0);
+  if (vtkAvailable()) {
+    ASSERT_TRUE(j["vtk"]["available"].get<bool>()) << j["vtk"].dump();
+    EXPECT_EQ(missingKeys(j, {"vtk.sizes.0.integrators.0.warm_ms",
+                              "vtk.sizes.0.integrators.0.cold_first_frame_ms",
+                              "sizes.0.errors.VTK linear.converged.rmse", "goals.0.speedup",
+                              "goals.0.met"}),
+              std::vector<std::string>{});
+  }
+}
+
+}  // namespace
+}  // namespace sm::test
