@@ -11,11 +11,17 @@
 
 // An element entered through `entryFace` at ray distance tIn (crossing slopes slopeIn, for ties),
 // where the scalar is sIn.
+// The current element, and the crossing into the next one: the walk enters element `next`
+// through face k[0..kn-1] (listed in that element's own outward order) at tIn, where the crossing's
+// slopes are slopeIn and the scalar is sIn.
 struct Walk {
   uint type;
   uint index;
   uint v[8];
   int entryFace;
+  uint next;  // element reference (index << 2 | type)
+  uint k[4];
+  uint kn;
   float tIn;
   vec2 slopeIn;
   float sIn;
@@ -36,29 +42,18 @@ void loadVertex(RayFrame fr, SceneRefs sc, uint id, inout ElementGeom g, uint i)
   g.S[i] = vertexScalar(sc, id);
 }
 
-ElementGeom loadGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8]) {
-  ElementGeom g;
-  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) {
-    g.P[i] = vec3(0.0);
-    g.W[i] = vec3(0.0);
-    g.S[i] = 0.0;
-  }
-  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) loadVertex(fr, sc, v[i], g, i);
-  return g;
-}
-
 // Geometry of the element just entered through a face of the previous one: the face's vertices
 // were already loaded and projected there (projection is deterministic per vertex, so copying is
 // exact); only the others are fetched. A tetrahedron fetches one vertex per step instead of four.
 ElementGeom carryGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8], uint prevV[8], ElementGeom prev,
-                          uint prevType) {
+                          uint prevCount) {
   ElementGeom g;
   SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) {
     g.P[i] = vec3(0.0);
     g.W[i] = vec3(0.0);
     g.S[i] = 0.0;
   }
-  uint pn = SM_NUM_VERTS[prevType];
+  uint pn = prevCount;
   SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
     int j = -1;
     SM_NO_UNROLL for (uint k = 0u; k < pn; ++k)
@@ -185,26 +180,9 @@ bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, f
   return foundOther;
 }
 
-// Moves the walk across face f (of the current element) into neighbour `ref`.
-bool crossInto(SceneRefs sc, inout Walk w, uint f, uint ref, float t, vec2 slope, float s) {
-  uint n = smFaceSize(w.type, f);
-  uint k[4];
-  SM_NO_UNROLL for (uint i = 0u; i < n; ++i) k[i] = w.v[smFaceVert(w.type, f, n - 1u - i)];  // reversed: its outward order
-  if (n == 3u) k[3] = 0u;
-  w.type = smRefType(ref);
-  w.index = smRefIndex(ref);
-  uint v[8];
-  w.entryFace = decodeElement(sc, w.type, w.index, k, n, v);
-  w.v = v;
-  w.tIn = t;
-  w.slopeIn = slope;
-  w.sIn = s;
-  return w.entryFace >= 0;
-}
-
 struct MarchResult {
   vec4 color;     // premultiplied, front to back
-  float tEnd;     // where the walk left the rank's volume
+  float tEnd;     // forward: where the walk left the rank's volume
   uint status;    // 0 ok, 1 lost, 2 step limit
   uint steps;
   uint samples;
@@ -214,8 +192,13 @@ const uint MARCH_OK = 0u;
 const uint MARCH_LOST = 1u;
 const uint MARCH_STEP_LIMIT = 2u;
 
-// Integrates the segment that starts with walk `w`, taking samples from tLo on.
-MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
+// The element walk. Forward (side +1): from walk `w`, integrate the samples from tLimit on until
+// the walk leaves the volume. Backward (side -1): walk against the ray, without sampling, to the
+// element that holds tLimit (or to the shell face where the volume begins if that comes first);
+// `w` then holds that element entered through that crossing, ready for a forward walk.
+// One function for both directions so that the shader holds one copy of the crossing search,
+// decoding and geometry code (Mesa inlines every call site; compile time grows with size).
+MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLimit) {
   MarchResult r;
   r.color = vec4(0.0);
   r.tEnd = w.tIn;
@@ -223,72 +206,71 @@ MarchResult marchSegment(RayFrame fr, FrameParams fp, Walk w, float tLo) {
   r.steps = 0u;
   r.samples = 0u;
   SceneRefs sc = fp.scene;
-  vec3 guess = parametricCenter(w.type);
-  ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
+  ElementGeom g;
+  uint prevV[8] = uint[8](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
+  uint prevCount = 0u;  // nothing to carry into the first element
   SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
     r.steps += 1u;
+    // Enter the next element: decode it from the face crossed, fetch what the last one did not share.
+    uint type = specialisedType(smRefType(w.next)), index = smRefIndex(w.next);
+    uint v[8];
+    int entry = decodeElement(sc, type, index, w.k, w.kn, v);
+    if (entry < 0) {
+      r.status = MARCH_LOST;
+      return r;
+    }
+    g = carryGeometry(fr, sc, type, v, prevV, g, prevCount);
+    w.type = type;
+    w.index = index;
+    w.v = v;
+    w.entryFace = entry;
+    vec3 guess = parametricCenter(type);  // Newton starts at each element's centre
+
     int f;
-    float tOut, sOut;
-    vec2 slopeOut;
-    if (!findCrossing(w.type, w.v, g, w.entryFace, 1, w.tIn, w.slopeIn, f, tOut, slopeOut, sOut)) {
+    float t, s;
+    vec2 slope;
+    if (!findCrossing(type, v, g, entry, side, w.tIn, w.slopeIn, f, t, slope, s)) {
       r.status = MARCH_LOST;
       return r;
     }
-    tOut = max(tOut, w.tIn);
-    float a = max(w.tIn, tLo);
-    if (tOut > a) {
-      integrateElement(fr, fp, w.type, g, w.tIn, tOut, w.sIn, sOut, a, tOut, guess, r.color, r.samples);
+    uint ref = neighborOf(sc, type, index, faceSlot(type, v, uint(f)));
+    uint n = smFaceSize(type, uint(f));
+    if (side > 0) {
+      t = max(t, w.tIn);
+      float a = max(w.tIn, tLimit);
+      if (t > a) integrateElement(fr, fp, type, g, w.tIn, t, w.sIn, s, a, t, guess, r.color, r.samples);
+      r.tEnd = t;
+      if (r.color.a >= fp.earlyTermination || ref == SM_NO_NEIGHBOR) {
+        r.status = MARCH_OK;
+        return r;
+      }
+    } else {
+      t = min(t, w.tIn);
+      if (t <= tLimit || ref == SM_NO_NEIGHBOR) {
+        // Stop here: the forward walk enters this element again through this crossing (its face f,
+        // in its own outward order).
+        w.next = smElemRef(index, type);
+        SM_NO_UNROLL for (uint i = 0u; i < n; ++i) w.k[i] = v[smFaceVert(type, uint(f), i)];
+        w.kn = n;
+        w.tIn = t;
+        w.slopeIn = slope;
+        w.sIn = s;
+        r.status = MARCH_OK;
+        return r;
+      }
     }
-    r.tEnd = tOut;
-    if (r.color.a >= fp.earlyTermination) {
-      r.status = MARCH_OK;
-      return r;
-    }
-    uint ref = neighborOf(sc, w.type, w.index, faceSlot(w.type, w.v, uint(f)));
-    if (ref == SM_NO_NEIGHBOR) {
-      r.status = MARCH_OK;
-      return r;
-    }
-    uint prevV[8] = w.v;
-    uint prevType = w.type;
-    if (!crossInto(sc, w, uint(f), ref, tOut, slopeOut, sOut)) {
-      r.status = MARCH_LOST;
-      return r;
-    }
-    g = carryGeometry(fr, sc, w.type, w.v, prevV, g, prevType);
-    // A new element: start Newton from its centre, not from the last element's coordinates.
-    guess = parametricCenter(w.type);
+    // Cross face f: the neighbour lists it in reverse (its own outward order).
+    w.next = ref;
+    SM_NO_UNROLL for (uint i = 0u; i < n; ++i) w.k[i] = v[smFaceVert(type, uint(f), n - 1u - i)];
+    if (n == 3u) w.k[3] = 0u;
+    w.kn = n;
+    w.tIn = t;
+    w.slopeIn = slope;
+    w.sIn = s;
+    prevV = v;
+    prevCount = SM_NUM_VERTS[type];
   }
   return r;
-}
-
-// Walks backward from walk `w` (an element entered backward through its face w.entryFace at w.tIn)
-// to the element that holds tStart, or to the shell face where the volume begins if that comes
-// first. Returns the walk ready for marchSegment (entry = that crossing).
-bool walkBack(RayFrame fr, FrameParams fp, inout Walk w, float tStart, inout uint steps) {
-  SceneRefs sc = fp.scene;
-  ElementGeom g = loadGeometry(fr, sc, w.type, w.v);
-  SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
-    steps += 1u;
-    int f;
-    float tB, sB;
-    vec2 slopeB;
-    if (!findCrossing(w.type, w.v, g, w.entryFace, -1, w.tIn, w.slopeIn, f, tB, slopeB, sB)) return false;
-    tB = min(tB, w.tIn);
-    uint ref = neighborOf(sc, w.type, w.index, faceSlot(w.type, w.v, uint(f)));
-    if (tB <= tStart || ref == SM_NO_NEIGHBOR) {
-      w.entryFace = f;
-      w.tIn = tB;
-      w.slopeIn = slopeB;
-      w.sIn = sB;
-      return true;
-    }
-    uint prevV[8] = w.v;
-    uint prevType = w.type;
-    if (!crossInto(sc, w, uint(f), ref, tB, slopeB, sB)) return false;
-    g = carryGeometry(fr, sc, w.type, w.v, prevV, g, prevType);
-  }
-  return false;
 }
 
 #endif

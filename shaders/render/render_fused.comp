@@ -22,13 +22,10 @@ void main() {
     RayFrame fr = pixelRay(fp, px);
     wr = dcBegin(fp.fragments, pixel * fp.fragK, fp.fragK);
     float prevEnd = 0.0, transmittance = 1.0;
+    Traversal tr = beginTraversal(fp);
     Segment seg;
-    Segment prev = firstSearchPoint();
-    bool inside = insideSegment(fr, fp, seg);
-    while (nseg < fp.maxSegments && (inside || nextEntrySegment(fr, fp.scene, prev, seg))) {
+    while (nseg < fp.maxSegments && nextSegment(fr, fp.scene, tr, seg)) {
       nseg += 1u;
-      if (!inside) prev = seg;
-      inside = false;
       DcFragment frag;
       if (integrateSegment(fr, fp, seg, prevEnd, frag, st)) {
         dcWrite(wr, frag);

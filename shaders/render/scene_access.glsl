@@ -21,7 +21,12 @@ layout(buffer_reference, scalar) buffer SmSegments { Segment v[]; };
 layout(buffer_reference, scalar) readonly buffer SmParams { FrameParams p; };
 layout(buffer_reference, scalar) buffer SmStats { RenderStats s; };
 
-bool typePresent(uint t) { return (kTypesPresent & (1u << t)) != 0u; }
+// A scene of one element type makes every test on the type a constant, so the code of the other
+// types drops out of the pipeline (DESIGN.md: pay only for what the scene uses).
+uint specialisedType(uint t) {
+  return kTypesPresent == 1u ? SM_TET : kTypesPresent == 2u ? SM_PYR : kTypesPresent == 4u ? SM_WED
+       : kTypesPresent == 8u ? SM_HEX : t;
+}
 
 vec3 vertexPosition(SceneRefs sc, uint v) { return SmVec3s(sc.positions).v[v]; }
 float vertexScalar(SceneRefs sc, uint v) { return SmFloats(sc.scalars).v[v]; }

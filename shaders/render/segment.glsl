@@ -19,36 +19,31 @@ bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prev
   frag.color = vec4(0.0);
   frag.depth = 0.0;
   SceneRefs sc = fp.scene;
-  Walk w;
-  if (seg.entryTriangle != kNoTriangle) {
-    uint t = kExactShell ? seg.entryTriangle : confirmShellTriangle(fr, sc, seg.entryTriangle, -1, st.walks);
-    if (t == kNoTriangle) {
-      st.grazing += 1u;
-      return false;
-    }
-    if (!walkFromShell(fr, sc, t, w)) {
-      st.lost += 1u;
-      return false;
-    }
-  } else {
-    // The eye is inside the volume: walk back from the first exit to the element holding the eye.
-    uint x = kExactShell ? seg.exitTriangle : confirmShellTriangle(fr, sc, seg.exitTriangle, 1, st.walks);
-    if (x == kNoTriangle) {
-      st.grazing += 1u;
-      return false;
-    }
-    if (!walkFromShell(fr, sc, x, w) || !walkBack(fr, fp, w, 0.0, st.steps)) {
-      st.lost += 1u;
-      return false;
-    }
-    st.inside += 1u;
+  bool inside = seg.entryTriangle == kNoTriangle;
+  // Inside: the eye is in the volume; walk back from the first exit to the element holding it.
+  uint tri = inside ? seg.exitTriangle : seg.entryTriangle;
+  if (!kExactShell) tri = confirmShellTriangle(fr, sc, tri, inside ? 1 : -1, st.walks);
+  if (tri == kNoTriangle) {
+    st.grazing += 1u;
+    return false;
   }
-  float tLo = max(w.tIn, max(prevEnd, 0.0));
-  MarchResult r = marchSegment(fr, fp, w, tLo);
-  st.steps += r.steps;
+  Walk w;
+  walkFromShell(fr, sc, tri, w);
+  // One call site for both walks (see march.glsl): phase 0 locates the eye's element, phase 1
+  // integrates.
+  float tLo = 0.0;
+  MarchResult r;
+  for (uint phase = inside ? 0u : 1u; phase < 2u; ++phase) {
+    if (phase == 1u) tLo = max(w.tIn, max(prevEnd, 0.0));
+    r = walk(fr, fp, w, phase == 0u ? -1 : 1, tLo);
+    st.steps += r.steps;
+    if (r.status != MARCH_OK) break;
+  }
+  if (inside) st.inside += 1u;
   st.samples += r.samples;
   if (r.status == MARCH_LOST) st.lost += 1u;
   if (r.status == MARCH_STEP_LIMIT) st.stepLimit += 1u;
+  if (r.status != MARCH_OK && r.samples == 0u) return false;
   prevEnd = max(prevEnd, r.tEnd);
   frag.color = r.color;
   frag.depth = tLo;

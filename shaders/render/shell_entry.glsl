@@ -39,31 +39,30 @@ uint confirmShellTriangle(RayFrame fr, SceneRefs sc, uint tri, int side, inout u
   return kNoTriangle;
 }
 
-// The element behind shell triangle `tri`, entered (forward, side -1) or left (side +1) through it.
-bool walkFromShell(RayFrame fr, SceneRefs sc, uint tri, out Walk w) {
+// Sets up a walk that enters the element behind shell triangle `tri` through it (forward, an
+// entry) or, for a backward walk from the first exit, through it going backward.
+void walkFromShell(RayFrame fr, SceneRefs sc, uint tri, out Walk w) {
   uvec3 ids = shellTriangle(sc, tri);
-  uint k[4] = uint[4](ids.x, ids.y, ids.z, 0u);
-  uint n = 3u;
+  w.k = uint[4](ids.x, ids.y, ids.z, 0u);
+  w.kn = 3u;
   if (kCompact) {
     uint other = SmUints(sc.shellOther).v[tri];
     if (other != kNoTriangle) {
-      k[3] = other;
-      n = 4u;
+      w.k[3] = other;
+      w.kn = 4u;
     }
   }
-  uint ref = SmUints(sc.shellRefs).v[tri];
-  w.type = smRefType(ref);
-  w.index = smRefIndex(ref);
-  uint v[8];
-  w.entryFace = decodeElement(sc, w.type, w.index, k, n, v);
-  w.v = v;
+  w.next = SmUints(sc.shellRefs).v[tri];
+  w.type = 0u;
+  w.index = 0u;
+  w.v = uint[8](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
+  w.entryFace = -1;
   vec3 p0 = projectVertex(fr, vertexPosition(sc, ids.x));
   vec3 p1 = projectVertex(fr, vertexPosition(sc, ids.y));
   vec3 p2 = projectVertex(fr, vertexPosition(sc, ids.z));
   vec3 bary;
   triangleCrossing(ids.x, ids.y, ids.z, p0, p1, p2, w.tIn, bary, w.slopeIn);
   w.sIn = bary.x * vertexScalar(sc, ids.x) + bary.y * vertexScalar(sc, ids.y) + bary.z * vertexScalar(sc, ids.z);
-  return w.entryFace >= 0;
 }
 
 #endif

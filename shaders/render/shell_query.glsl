@@ -78,29 +78,16 @@ bool nextCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, int side
   return deviceCrossing(fr, tPrev, tMax, side, tri, t);
 }
 
-// The segment that starts inside the volume (the eye is in it), if any: the first exit comes
-// before the first entry.
-bool insideSegment(RayFrame fr, FrameParams fp, out Segment seg) {
-  seg.tEntry = 0.0;
-  seg.reserved = 0.0;
-  seg.entryTriangle = kNoTriangle;
-  seg.exitTriangle = kNoTriangle;
-  if (fp.eyeMayBeInside == 0u) return false;
-  uint exitTri, entryTri;
-  float tx, te;
-  if (!nextCrossing(fr, fp.scene, 0.0, kNoTriangle, 1, exitTri, tx)) return false;
-  if (nextCrossing(fr, fp.scene, 0.0, kNoTriangle, -1, entryTri, te) && te <= tx) return false;
-  seg.exitTriangle = exitTri;
-  return true;
-}
-
-// The next entry after `prev` (an entry segment, or tEntry 0 / no triangle to start): false when
-// there is none.
-bool nextEntrySegment(RayFrame fr, SceneRefs sc, Segment prev, out Segment seg) {
-  seg.reserved = 0.0;
-  seg.exitTriangle = kNoTriangle;
-  return nextCrossing(fr, sc, prev.tEntry, prev.entryTriangle, -1, seg.entryTriangle, seg.tEntry);
-}
+// Traversal as a state machine with one query call site (Mesa inlines each call; fewer copies of
+// the query compile faster). Phase 0 finds the first exit and phase 1 the first entry, only when
+// the eye may be inside this rank's volume: an exit before any entry means it is, and that ray's
+// first segment starts at the eye. Phase 2 then yields the entries in order.
+struct Traversal {
+  uint phase;
+  float tFirstExit;
+  uint firstExit;
+  Segment prev;  // last entry yielded (or the search start)
+};
 
 Segment firstSearchPoint() {
   Segment s;
@@ -109,6 +96,47 @@ Segment firstSearchPoint() {
   s.entryTriangle = kNoTriangle;
   s.exitTriangle = kNoTriangle;
   return s;
+}
+
+Traversal beginTraversal(FrameParams fp) {
+  Traversal tr;
+  tr.phase = fp.eyeMayBeInside != 0u ? 0u : 2u;
+  tr.tFirstExit = 0.0;
+  tr.firstExit = kNoTriangle;
+  tr.prev = firstSearchPoint();
+  return tr;
+}
+
+// The next segment along the ray; false when there is none.
+bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, out Segment seg) {
+  seg = firstSearchPoint();
+  for (uint guard = 0u; guard < 4u; ++guard) {
+    bool entries = tr.phase != 0u;
+    uint tri;
+    float t;
+    bool found = nextCrossing(fr, sc, tr.prev.tEntry, tr.prev.entryTriangle, entries ? -1 : 1, tri, t);
+    if (tr.phase == 0u) {
+      if (!found) return false;  // no exit ahead at all: nothing of this rank on the ray
+      tr.tFirstExit = t;
+      tr.firstExit = tri;
+      tr.phase = 1u;
+      continue;
+    }
+    if (tr.phase == 1u) {
+      tr.phase = 2u;
+      if (!found || t > tr.tFirstExit) {  // the eye is inside: a segment starts at it
+        seg.exitTriangle = tr.firstExit;
+        return true;
+      }
+      continue;  // the eye is outside: phase 2 finds that entry again
+    }
+    if (!found) return false;
+    seg.entryTriangle = tri;
+    seg.tEntry = t;
+    tr.prev = seg;
+    return true;
+  }
+  return false;
 }
 
 #endif

@@ -25,17 +25,135 @@ uint firstSample(float t, float dt) {
   return k;
 }
 
-void addSample(FrameParams fp, float s, inout vec4 acc) {
-  if (isnan(s) || isinf(s)) return;  // non-finite data renders transparent
-  vec4 c = transferLookup(fp, s);
-  float alpha = 1.0 - exp(-c.a * fp.sigmaScale * fp.dt);
-  acc.rgb += (1.0 - acc.a) * alpha * c.rgb;
-  acc.a += (1.0 - acc.a) * alpha;
+layout(constant_id = 13) const bool kShading = false;
+
+// Blinn-Phong with a headlight (light and view along -dir, so the half vector is too), two-sided:
+// a gradient pointing away from the viewer lights the same as one pointing at it.
+float shadingCosine(vec3 grad, vec3 dir) {
+  float m = length(grad);
+  return m > 0.0 && !isinf(m) ? abs(dot(grad, dir)) / m : -1.0;  // -1: no normal, unshaded
 }
 
-// Samples of the element crossed over [tIn, tOut) that lie in [a, b). Tetrahedra interpolate
-// linearly along the ray between the crossing scalars (exact for linear elements); the other types
-// evaluate their shape functions at the sample point.
+vec3 shade(FrameParams fp, vec3 rgb, float alpha, float c) {
+  if (c < 0.0) return rgb;
+  return rgb * (fp.shadeAmbient + fp.shadeDiffuse * c) + alpha * fp.shadeSpecular * pow(c, fp.shadeShininess);
+}
+
+
+layout(constant_id = 12) const bool kElementExact = false;
+
+// Element-exact integration with the pre-integrated transfer function; mirrors
+// PreintegrationTable::integrate (src/render/preintegration.cpp) step by step.
+float piCoord(FrameParams fp, float s, uint bins) {
+  return clamp((s - fp.piLo) / (fp.piHi - fp.piLo), 0.0, 1.0) * float(bins - 1u);
+}
+
+float piCumulativeAt(FrameParams fp, float s) {
+  SmFloats c = SmFloats(fp.piCumulative);
+  float x = piCoord(fp, s, fp.piCumulativeBins);
+  uint i = min(uint(x), fp.piCumulativeBins - 2u);
+  return mix(c.v[i], c.v[i + 1u], x - float(i));
+}
+
+vec3 piColor(FrameParams fp, float sf, float sb, float L) {
+  vec3 x = vec3(piCoord(fp, sf, fp.piScalarBins), piCoord(fp, sb, fp.piScalarBins),
+                sqrt(clamp(L * fp.piSigmaMax / fp.piTauMax, 0.0, 1.0)) * float(fp.piLengthBins - 1u));
+  uvec3 size = uvec3(fp.piScalarBins, fp.piScalarBins, fp.piLengthBins);
+  uvec3 lo = min(uvec3(x), size - 1u);
+  uvec3 hi = min(lo + 1u, size - 1u);
+  vec3 w = x - vec3(lo);
+  SmVec4s table = SmVec4s(fp.preintegration);
+  vec3 r = vec3(0.0);
+  SM_NO_UNROLL for (uint c = 0u; c < 8u; ++c) {
+    bvec3 up = bvec3((c & 1u) != 0u, (c & 2u) != 0u, (c & 4u) != 0u);
+    uvec3 at = mix(lo, hi, up);
+    vec3 wc = mix(1.0 - w, w, vec3(up));
+    r += wc.x * wc.y * wc.z * table.v[(at.z * size.y + at.y) * size.x + at.x].rgb;
+  }
+  return r;
+}
+
+// A piece whose scalar stays within [piLo, piHi].
+vec4 piInside(FrameParams fp, float sf, float sb, float L) {
+  float ds = sb - sf;
+  float mean = abs(ds) > 1e-3 * (fp.piHi - fp.piLo)
+                   ? (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds
+                   : transferLookup(fp, 0.5 * (sf + sb)).a * fp.sigmaScale;
+  float alpha = 1.0 - exp(-L * max(mean, 0.0));
+  return vec4(piColor(fp, sf, sb, L) * alpha, alpha);
+}
+
+// Colour (premultiplied) and opacity of a piece of length L with the scalar running linearly from
+// sf to sb: split where the scalar leaves the range, outside of which the function is constant.
+vec4 preintegrated(FrameParams fp, float sf, float sb, float L) {
+  if (!(L > 0.0) || isnan(sf) || isinf(sf) || isnan(sb) || isinf(sb)) return vec4(0.0);
+  float cuts[4] = float[4](0.0, 0.0, 0.0, 1.0);
+  if (sb != sf) {
+    float uLo = (fp.piLo - sf) / (sb - sf), uHi = (fp.piHi - sf) / (sb - sf);
+    cuts[1] = clamp(min(uLo, uHi), 0.0, 1.0);
+    cuts[2] = clamp(max(uLo, uHi), 0.0, 1.0);
+  }
+  vec4 acc = vec4(0.0);
+  SM_NO_UNROLL for (uint i = 0u; i < 3u; ++i) {
+    float u0 = cuts[i], u1 = cuts[i + 1u];
+    if (!(u1 > u0)) continue;
+    float a = clamp(mix(sf, sb, u0), fp.piLo, fp.piHi), b = clamp(mix(sf, sb, u1), fp.piLo, fp.piHi);
+    acc += (1.0 - acc.a) * piInside(fp, a, b, (u1 - u0) * L);
+  }
+  return acc;
+}
+
+// Pieces per non-tetrahedral crossing in element-exact mode: their scalar is not linear along the
+// ray, so it is taken piecewise linear between points at most dt apart (at least kMinPieces).
+const uint kMinPieces = 4u;
+const uint kMaxPieces = 64u;
+
+// World-space gradient of the scalar (for shading): constant in a tetrahedron; elsewhere from the
+// shape functions at parametric point p, mapped by the inverse transposed Jacobian.
+vec3 scalarGradient(uint type, ElementGeom g, vec3 X[8], vec3 p) {
+  mat3 J;
+  vec3 dp;
+  if (type == SM_TET) {
+    J = mat3(g.W[1] - g.W[0], g.W[2] - g.W[0], g.W[3] - g.W[0]);
+    dp = vec3(g.S[1] - g.S[0], g.S[2] - g.S[0], g.S[3] - g.S[0]);
+  } else {
+    float N[8];
+    vec3 dN[8];
+    shapeFunctions(type, p, N, dN);
+    J = mat3(0.0);
+    dp = vec3(0.0);
+    SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
+      J[0] += dN[i].x * X[i];
+      J[1] += dN[i].y * X[i];
+      J[2] += dN[i].z * X[i];
+      dp += g.S[i] * dN[i];
+    }
+  }
+  if (!(abs(determinant(J)) > 0.0)) return vec3(0.0);
+  return inverse(transpose(J)) * dp;
+}
+
+// The scalar at t on the element crossed over [tIn, tOut]: tetrahedra interpolate linearly along
+// the ray between the crossing scalars (exact for linear elements); the other types evaluate their
+// shape functions (Newton from the last point's parametric coordinates) everywhere. With shading,
+// also the shading cosine there.
+float scalarAlongRay(RayFrame fr, uint type, ElementGeom g, vec3 X[8], float tIn, float tOut, float sIn,
+                     float sOut, float t, inout vec3 guess, out float cosine) {
+  float s;
+  if (type == SM_TET) {
+    s = t <= tIn ? sIn : t >= tOut ? sOut : mix(sIn, sOut, (t - tIn) / (tOut - tIn));
+  } else {
+    // Not the crossing scalars at the ends: those interpolate over the face's triangles, which
+    // differs from the cell's own (bilinear) interpolation on a quadrilateral face.
+    invertIsoparametric(type, X, fr.org + t * fr.dir - g.W[0], guess);
+    s = interpolateIsoparametric(type, guess, g.S);
+  }
+  cosine = kShading ? shadingCosine(scalarGradient(type, g, X, guess), fr.dir) : -1.0;
+  return s;
+}
+
+// What the element crossed over [tIn, tOut) adds within [a, b): its samples on the global grid,
+// or in element-exact mode the whole piece, pre-integrated (shaded with the cosine at its end).
 void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, float tIn, float tOut, float sIn,
                       float sOut, float a, float b, inout vec3 guess, inout vec4 acc, inout uint samples) {
   float dt = fp.dt;
@@ -43,18 +161,36 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, flo
   vec3 X[8];
   if (type != SM_TET)
     for (uint i = 0u; i < 8u; ++i) X[i] = g.W[i] - g.W[0];
+  float cosine;
+  if (kElementExact) {
+    uint m = type == SM_TET ? 1u : clamp(uint(ceil((b - a) / dt)), kMinPieces, kMaxPieces);
+    float tPrev = a, sPrev = 0.0;
+    SM_NO_UNROLL for (uint i = 0u; i <= m; ++i) {
+      float t = i == m ? b : mix(a, b, float(i) / float(m));
+      float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
+      if (i > 0u) {
+        vec4 c = preintegrated(fp, sPrev, s, t - tPrev);
+        if (kShading) c.rgb = shade(fp, c.rgb, c.a, cosine);
+        acc += (1.0 - acc.a) * c;
+        samples += 1u;
+        if (acc.a >= fp.earlyTermination) return;
+      }
+      tPrev = t;
+      sPrev = s;
+    }
+    return;
+  }
   for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
-    float s;
-    if (type == SM_TET) {
-      float len = tOut - tIn;
-      s = len > 0.0 ? mix(sIn, sOut, clamp((t - tIn) / len, 0.0, 1.0)) : sIn;
-    } else {
-      vec3 x = fr.org + t * fr.dir - g.W[0];
-      invertIsoparametric(type, X, x, guess);
-      s = interpolateIsoparametric(type, guess, g.S);
+    float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
+    vec4 c = vec4(0.0);
+    if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
+      c = transferLookup(fp, s);
+      if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
     }
-    addSample(fp, s, acc);
+    float alpha = 1.0 - exp(-c.a * fp.sigmaScale * dt);
+    acc.rgb += (1.0 - acc.a) * alpha * c.rgb;
+    acc.a += (1.0 - acc.a) * alpha;
     samples += 1u;
     if (acc.a >= fp.earlyTermination) return;
   }

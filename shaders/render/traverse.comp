@@ -21,16 +21,11 @@ void main() {
   uint base = kStore ? SmUints(fp.segOffsets).v[pixel] : 0u;
   uint cap = kStore ? SmUints(fp.segCounts).v[pixel] : fp.maxSegments;
   uint n = 0u;
+  Traversal tr = beginTraversal(fp);
   Segment seg;
-  if (n < cap && insideSegment(fr, fp, seg)) {
+  while (n < cap && nextSegment(fr, fp.scene, tr, seg)) {
     if (kStore) SmSegments(fp.segments).v[base + n] = seg;
     n += 1u;
-  }
-  Segment prev = firstSearchPoint();
-  while (n < cap && nextEntrySegment(fr, fp.scene, prev, seg)) {
-    if (kStore) SmSegments(fp.segments).v[base + n] = seg;
-    n += 1u;
-    prev = seg;
   }
   if (!kStore) SmUints(fp.segCounts).v[pixel] = n;
 }

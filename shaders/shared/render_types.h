@@ -37,6 +37,8 @@ struct FrameParams {
   uint64_t fragments;         // fragment storage (encoding per the compositor)
   uint64_t stats;             // RenderStats
   uint64_t rays;              // 0: camera rays; else one RayDesc per "pixel" (width x 1 image)
+  uint64_t preintegration;    // element-exact mode: vec4 colours [(l * bins + b) * bins + f]
+  uint64_t piCumulative;      // ... and float cumulative extinction over [piLo, piHi]
   // Camera, rebased to the scene origin.
   vec3 eye;
   float tanHalfFovy;
@@ -57,8 +59,18 @@ struct FrameParams {
   uint maxSegments;        // per ray: the traversal's bound
   uint fragK;              // fixed-length lists: slots per pixel
   uint eyeMayBeInside;     // 0 when the eye is outside this rank's bounds: no ray starts inside
+  uint piScalarBins;       // pre-integration table size along front and back scalar
+  uint piLengthBins;       // ... and along sqrt(optical depth / piTauMax)
+  float piSigmaMax;        // extinction that maps a length to optical depth for the table
+  float piTauMax;
+  uint piCumulativeBins;
+  float piLo;  // scalar range of the pre-integration tables
+  float piHi;
   uint pad0;
-  uint pad1;
+  float shadeAmbient;  // Blinn-Phong coefficients (src/render/render_settings.h, Shading)
+  float shadeDiffuse;
+  float shadeSpecular;
+  float shadeShininess;
 };
 
 // An explicit ray (rebased origin, unit direction), for tests that aim rays at vertices and edges.
@@ -69,32 +81,32 @@ struct RayDesc {
 
 // One segment of a ray inside this rank's volume, from shell traversal.
 struct Segment {
-  float tEntry;         // distance of the entry crossing (0 for a segment that starts inside)
+  float tEntry;  // distance of the entry crossing (0 for a segment that starts inside)
   float reserved;
-  uint entryTriangle;   // shell triangle the ray enters through, or ~0u: the segment starts inside
-                        // the volume (the camera is in it) and is found from exitTriangle
-  uint exitTriangle;    // only for segments that start inside: the first exit
+  uint entryTriangle;  // shell triangle the ray enters through, or ~0u: the segment starts inside
+                       // the volume (the camera is in it) and is found from exitTriangle
+  uint exitTriangle;   // only for segments that start inside: the first exit
 };
 
 // Global counters (atomics) for --stats.
 struct RenderStats {
-  uint lostRays;        // marches that lost their element (must be zero on hard cases)
-  uint grazingSkips;    // hardware entries the exact predicate says the ray only grazes
-  uint entryWalks;      // entries corrected by walking the shell adjacency
-  uint stepLimitHits;   // marches stopped by maxElementSteps
+  uint lostRays;       // marches that lost their element (must be zero on hard cases)
+  uint grazingSkips;   // hardware entries the exact predicate says the ray only grazes
+  uint entryWalks;     // entries corrected by walking the shell adjacency
+  uint stepLimitHits;  // marches stopped by maxElementSteps
   uint segments;
   uint fragments;
-  uint overflow;        // fragments dropped or merged by fixed-length lists
-  uint elementSteps;    // elements visited (wraps on huge frames; for rates only)
-  uint samples;         // samples taken (wraps on huge frames; for rates only)
-  uint cameraInside;    // rays whose first segment starts at the camera
+  uint overflow;      // fragments dropped or merged by fixed-length lists
+  uint elementSteps;  // elements visited (wraps on huge frames; for rates only)
+  uint samples;       // samples taken (wraps on huge frames; for rates only)
+  uint cameraInside;  // rays whose first segment starts at the camera
   uint pad0;
   uint pad1;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 14 * 8 + 8 * 8 + 4 * 16 + 12 * 4, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 14 * 8 + 10 * 8 + 4 * 16 + 22 * 4, "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(RenderStats) == 48, "RenderStats layout");

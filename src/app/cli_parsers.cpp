@@ -10,7 +10,8 @@
 namespace sm::app {
 namespace {
 
-std::vector<double> numbers(const std::string& option, const std::string& value, char sep, size_t count) {
+std::vector<double> numbers(const std::string& option, const std::string& value, char sep,
+                            size_t count) {
   std::vector<double> out;
   std::stringstream ss(value);
   std::string item;
@@ -21,7 +22,8 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
       throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
     out.push_back(d);
   }
-  if (out.size() != count) throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+  if (out.size() != count)
+    throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
   return out;
 }
 
@@ -29,7 +31,8 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
 
 std::pair<int, int> parseSize(const std::string& option, const std::string& value) {
   auto v = numbers(option, value, 'x', 2);
-  if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] > 16384 || v[1] > 16384)
+  if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) ||
+      v[0] > 16384 || v[1] > 16384)
     throw Error(option, ": '", value, "' is not an image size WxH (1 .. 16384)");
   return {int(v[0]), int(v[1])};
 }
@@ -43,6 +46,20 @@ std::pair<double, double> parseRange(const std::string& option, const std::strin
   auto v = numbers(option, value, ',', 2);
   if (!(v[0] < v[1])) throw Error(option, ": '", value, "' needs LO < HI");
   return {v[0], v[1]};
+}
+
+render::Shading parseShading(const std::string& option, const std::string& value) {
+  auto v = numbers(option, value, ',', 4);
+  if (!(v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[3] >= 1 && v[3] <= 1024))
+    throw Error(option, ": '", value,
+                "' needs AMBIENT,DIFFUSE,SPECULAR >= 0 and a SHININESS in [1, 1024]");
+  render::Shading s;
+  s.enabled = true;
+  s.ambient = v[0];
+  s.diffuse = v[1];
+  s.specular = v[2];
+  s.shininess = v[3];
+  return s;
 }
 
 double parsePositive(const std::string& option, const std::string& value) {
@@ -62,6 +79,18 @@ comp::Encoding parseEncoding(const std::string& value) {
   if (value == "float") return comp::Encoding::Float;
   if (value == "rgba8") return comp::Encoding::Rgba8;
   throw Error("--encoding: '", value, "' (use float or rgba8)");
+}
+
+comp::CompositeMethod parseCompositeMethod(const std::string& value) {
+  if (value == "deep") return comp::CompositeMethod::Deep;
+  if (value == "single") return comp::CompositeMethod::SingleFragment;
+  throw Error("--composite: '", value, "' (use deep or single)");
+}
+
+render::Integration parseIntegration(const std::string& value) {
+  if (value == "sampled") return render::Integration::Sampled;
+  if (value == "exact") return render::Integration::ElementExact;
+  throw Error("--integration: '", value, "' (use sampled or exact)");
 }
 
 }  // namespace sm::app

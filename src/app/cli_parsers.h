@@ -7,14 +7,19 @@
 #include <glm/vec3.hpp>
 
 #include "compositor/deep_compositor.h"
+#include "render/render_settings.h"
 
 namespace sm::app {
 
-std::pair<int, int> parseSize(const std::string& option, const std::string& value);       // "WxH"
-glm::dvec3 parseVec3(const std::string& option, const std::string& value);                // "x,y,z"
-std::pair<double, double> parseRange(const std::string& option, const std::string& value);  // "lo,hi"
-double parsePositive(const std::string& option, const std::string& value);                 // > 0, finite
-comp::ListMode parseListMode(const std::string& value);    // two-pass | drop | merge
-comp::Encoding parseEncoding(const std::string& value);    // float | rgba8
+std::pair<int, int> parseSize(const std::string& option, const std::string& value);  // "WxH"
+glm::dvec3 parseVec3(const std::string& option, const std::string& value);           // "x,y,z"
+std::pair<double, double> parseRange(const std::string& option,
+                                     const std::string& value);             // "lo,hi"
+double parsePositive(const std::string& option, const std::string& value);  // > 0, finite
+comp::ListMode parseListMode(const std::string& value);                // two-pass | drop | merge
+comp::Encoding parseEncoding(const std::string& value);                // float | rgba8
+comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
+render::Integration parseIntegration(const std::string& value);        // sampled | exact
+render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
 
 }  // namespace sm::app

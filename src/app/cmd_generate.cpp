@@ -26,7 +26,7 @@ struct GenerateArgs {
   uint64_t seed = 1;
   std::string analytic;
   int cubeN = 4;
-  int threads = 0;
+  int threads = 1;
   std::string out;
 };
 
@@ -129,7 +129,9 @@ void registerGenerate(CLI::App& app) {
                   "cube-wedges|cube-pyramids|cube-hex instead of a gmsh mesh");
   cmd->add_option("--cube-n", args->cubeN, "Cells per side of the cube-* meshes")
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "gmsh threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--threads", args->threads,
+                  "gmsh threads (0: all cores; 1 gives bit-identical meshes)")
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "Output .pvtu (pieces go beside it)")->required();
   cmd->callback([args, cmd] { runGenerate(*args, *cmd); });
 }

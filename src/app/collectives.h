@@ -22,6 +22,8 @@ class Collectives {
   virtual double max(double v) = 0;
   virtual double sum(double v) = 0;
   virtual uint64_t sum(uint64_t v) = 0;
+  // Rank 0's `bytes` at `data` to every rank (the viewer's per-frame state).
+  virtual void broadcast(void* data, uint64_t bytes) = 0;
   // The compositor's communicator (nullptr on one rank: no exchange).
   virtual comp::Communicator* communicator() = 0;
 };
@@ -34,6 +36,7 @@ class SingleProcess final : public Collectives {
   double max(double v) override { return v; }
   double sum(double v) override { return v; }
   uint64_t sum(uint64_t v) override { return v; }
+  void broadcast(void*, uint64_t) override {}
   comp::Communicator* communicator() override { return nullptr; }
 };
 

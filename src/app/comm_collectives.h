@@ -15,6 +15,7 @@ class CommCollectives final : public Collectives {
   double max(double v) override;
   double sum(double v) override;
   uint64_t sum(uint64_t v) override { return comm_.allreduceSum(v); }
+  void broadcast(void* data, uint64_t bytes) override { comm_.broadcast(data, bytes, 0); }
   // One rank needs no exchange: the compositor gets no communicator then.
   comp::Communicator* communicator() override { return comm_.size() > 1 ? &comm_ : nullptr; }
 

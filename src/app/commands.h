@@ -10,5 +10,6 @@ void registerInfo(CLI::App& app);      // cmd_info.cpp
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
 void registerRender(CLI::App& app);    // cmd_render.cpp
 void registerBench(CLI::App& app);     // cmd_bench.cpp (subcommands: bench/registry.cpp)
+void registerView(CLI::App& app);      // cmd_view.cpp
 
 }  // namespace sm::app

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   sm::app::registerGenerate(app);
   sm::app::registerRender(app);
   sm::app::registerBench(app);
+  sm::app::registerView(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,8 +10,8 @@
 
 namespace sm::app {
 
-PreparedShare prepareShare(RankShare& share, const prep::PrepOptions& options, const std::string& cacheDir,
-                           int rank, int ranks) {
+PreparedShare prepareShare(RankShare& share, const prep::PrepOptions& options,
+                           const std::string& cacheDir, int rank, int ranks) {
   PreparedShare out;
   prep::GlobalFrame frame = prep::makeGlobalFrame(share.wholeBounds);
   std::string path;
@@ -50,12 +50,12 @@ std::vector<float> fieldStep(const mesh::UnstructuredMesh& mesh, const prep::Pre
   if (!f) {
     std::string names;
     for (const auto& g : mesh.fields) names += (names.empty() ? "" : ", ") + g.name;
-    throw Error("--field: ", mesh.source, " has no point field '", name, "' (it has: ",
-                names.empty() ? std::string("none") : names, ")");
+    throw Error("--field: ", mesh.source, " has no point field '", name,
+                "' (it has: ", names.empty() ? std::string("none") : names, ")");
   }
   if (step >= f->numSteps())
-    throw Error("--time: field '", name, "' has ", f->numSteps(), " time steps (0 .. ", f->numSteps() - 1,
-                "), not step ", step);
+    throw Error("--time: field '", name, "' has ", f->numSteps(), " time steps (0 .. ",
+                f->numSteps() - 1, "), not step ", step);
   return prep::gatherScalars(rank, f->steps[step]);
 }
 

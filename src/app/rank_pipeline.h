@@ -18,10 +18,11 @@ struct PreparedShare {
 
 // Prepares this rank's mesh (taking its geometry out of `share.mesh`), reading and writing the
 // binary cache in cacheDir when it is not empty. Stale or corrupt caches are rebuilt.
-PreparedShare prepareShare(RankShare& share, const prep::PrepOptions& options, const std::string& cacheDir,
-                           int rank, int ranks);
+PreparedShare prepareShare(RankShare& share, const prep::PrepOptions& options,
+                           const std::string& cacheDir, int rank, int ranks);
 
-// Values of field `name` at `step` in this rank's vertex order; throws listing the fields there are.
+// Values of field `name` at `step` in this rank's vertex order; throws listing the fields there
+// are.
 std::vector<float> fieldStep(const mesh::UnstructuredMesh& mesh, const prep::PreparedRank& rank,
                              const std::string& name, uint64_t step);
 

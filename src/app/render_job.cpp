@@ -6,9 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/frame_extras.h"
 #include "app/rank_pipeline.h"
+#include "app/render_setup.h"
 #include "app/render_stats.h"
 #include "common/error.h"
+#include "common/file_util.h"
 #include "common/log.h"
 #include "common/timer.h"
 #include "render/renderer.h"
@@ -18,14 +21,8 @@
 namespace sm::app {
 namespace {
 
-std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m) {
-  if (!job.field.empty()) return job.field;
-  if (m.fields.empty()) throw Error(job.mesh, ": has no point fields to render");
-  log::info("--field not given: rendering '", m.fields.front().name, "'");
-  return m.fields.front().name;
-}
-
 std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
+  available = std::max<uint64_t>(available, 1);
   if (job.time == "all") {
     std::vector<uint64_t> all(std::max<uint64_t>(available, 1));
     for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
@@ -33,93 +30,57 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   }
   char* end = nullptr;
   long long t = std::strtoll(job.time.c_str(), &end, 10);
-  if (job.time.empty() || *end || t < 0) throw Error("--time: '", job.time, "' is not a step index or 'all'");
+  if (job.time.empty() || *end || t < 0)
+    throw Error("--time: '", job.time, "' is not a step index or 'all'");
+  if (uint64_t(t) >= available)
+    throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",
+                available == 1 ? "" : "s", ": 0 .. ", available - 1, ")");
   return {uint64_t(t)};
-}
-
-// Range of the field over the steps to render, on every rank.
-std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
-                                      const std::vector<uint64_t>& steps, Collectives& coll) {
-  mesh::Range r;
-  if (const mesh::Field* f = m.findField(field))
-    for (uint64_t s : steps) r.extend(mesh::fieldRange(*f, s));
-  double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
-  if (!(lo <= hi)) return {0.0, 1.0};
-  return {lo, hi};
-}
-
-scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
-  if (!job.eye) {
-    if (job.at || job.up) throw Error("--at and --up need --eye (or use --view)");
-    return scene::frameBounds(whole, scene::parseViewPreset(job.view), double(job.width) / job.height, job.fovy);
-  }
-  scene::Camera c;
-  c.eye = *job.eye;
-  c.at = job.at.value_or(whole.center());
-  c.up = job.up.value_or(glm::dvec3(0, 0, 1));
-  c.fovyDeg = job.fovy;
-  return c;
-}
-
-std::string framePath(const std::string& out, uint64_t step, bool sequence) {
-  if (!sequence) return out;
-  std::string stem = out, ext = ".png";
-  if (auto dot = out.rfind('.'); dot != std::string::npos && out.find('/', dot) == std::string::npos) {
-    stem = out.substr(0, dot);
-    ext = out.substr(dot);
-  }
-  char num[16];
-  std::snprintf(num, sizeof num, "_%04llu", (unsigned long long)step);
-  return stem + num + ext;
 }
 
 }  // namespace
 
 void runRender(const RenderJob& job, Collectives& coll) {
-  if (job.width <= 0 || job.height <= 0 || job.width > 16384 || job.height > 16384)
-    throw Error("--size: ", job.width, "x", job.height, " is not a usable image size (1 .. 16384 per side)");
+  checkImageSize(job);
   Timer total;
   RankShare share = loadRankShare(job.mesh, job.share, coll);
   const double loadSeconds = total.seconds();
   const std::string field = resolveField(job, share.mesh);
-  const uint64_t available = share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
+  const uint64_t available =
+      share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
   const std::vector<uint64_t> steps = stepsToRender(job, coll.max(double(available)));
-  auto [lo, hi] = job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
+  const std::pair<double, double> range =
+      job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
 
-  render::RenderSettings s;
-  s.width = job.width;
-  s.height = job.height;
-  s.camera = makeCamera(job, share.wholeBounds);
-  s.transferFunction = scene::makeTransferFunction(job.colormap);
-  s.transferFunction.lo = lo;
-  s.transferFunction.hi = hi;
-  s.transferFunction.opacityScale = job.opacityScale;
-  s.transferFunction.unitDistance = job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
-  s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
-  s.earlyTermination = job.earlyTermination;
-  if (!(s.transferFunction.unitDistance > 0)) throw Error("--unit-distance must be positive");
-  if (!(job.opacityScale >= 0)) throw Error("--opacity-scale must not be negative");
+  if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
+    throw Error("--out: '", job.out, "' must end in .png or .pfm");
+  render::RenderSettings s = makeSettings(job, share, range);
+  s.compositeMethod = job.composite;
 
   Timer prepTimer;
-  PreparedShare prepared = prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
+  PreparedShare prepared =
+      prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
   const double prepSeconds = prepTimer.seconds();
-  vk::ContextOptions vo;
-  vo.device = job.device;
-  vk::Context ctx(vo);
+  vk::Context ctx(contextOptions(job));
   render::GpuScene gpu(ctx, prepared.rank);
   comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
   render::Renderer renderer(ctx, gpu, compositor);
 
   StatsReport report(job, coll);
-  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu, ctx.deviceName(), s);
+  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
+                  ctx.deviceName(), s);
   for (uint64_t step : steps) {
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, available - 1)));
+    // A rank whose clusters carry fewer steps (or none) holds its last one.
+    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field,
+                             std::min(step, std::max<uint64_t>(available, 1) - 1)));
     render::FrameResult frame = renderer.render(s);
-    report.addFrame(step, frame, renderer);
+    report.addFrame(step, frame, renderer, compositor);
+    const bool sequence = steps.size() > 1;
+    writeFrameExtras(job, compositor, frame.pixels, step, sequence, coll);
     if (coll.rank() == 0) {
       scene::Image img(job.width, job.height);
       img.pixels = std::move(frame.pixels);
-      scene::writePng(framePath(job.out, step, steps.size() > 1), img, job.background);
+      scene::writeImage(framePath(job.out, step, sequence), img, job.background);
     }
   }
   report.finish(ctx.validationErrors());

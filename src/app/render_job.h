@@ -11,14 +11,15 @@
 #include "app/collectives.h"
 #include "app/rank_share.h"
 #include "compositor/deep_compositor.h"
+#include "render/render_settings.h"
 #include "scene/camera.h"
 
 namespace sm::app {
 
 struct RenderJob {
   std::string mesh;
-  std::string field;          // "" = the first point field
-  std::string time = "0";     // step index or "all"
+  std::string field;       // "" = the first point field
+  std::string time = "0";  // step index or "all"
   int width = 512, height = 512;
   std::optional<glm::dvec3> eye, at, up;
   double fovy = 30.0;
@@ -33,10 +34,16 @@ struct RenderJob {
   comp::CompositorOptions lists;
   bool compact = true;
   std::string device;
-  std::string cacheDir;       // "" = no preparation cache
-  std::string out = "shellmarch.png";
+  std::string cacheDir;                // "" = no preparation cache
+  std::string out = "shellmarch.png";  // .png or .pfm (float, for comparisons finer than 8 bits)
+  comp::CompositeMethod composite = comp::CompositeMethod::Deep;
+  render::Integration integration = render::Integration::Sampled;
+  render::Shading shading;
+  bool allTypePipelines = false;
+  std::string l2Heatmap;  // also composite single-fragment; write the L2 difference heatmap here
+  std::string heatmaps;   // prefix: fragment-count heatmaps per rank and combined (PNG)
   bool stats = false;
-  std::string statsJson;      // write statistics as JSON here
+  std::string statsJson;  // write statistics as JSON here
 };
 
 void runRender(const RenderJob& job, Collectives& coll);

@@ -33,8 +33,9 @@ StatsReport::StatsReport(const RenderJob& job, Collectives& coll) : job_(job), c
   json_["frames"] = nlohmann::json::array();
 }
 
-void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache, const prep::PreparedRank& rank,
-                           const render::GpuScene& gpu, const std::string& device, const render::RenderSettings& s) {
+void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache,
+                           const prep::PreparedRank& rank, const render::GpuScene& gpu,
+                           const std::string& device, const render::RenderSettings& s) {
   auto mem = prep::memoryReport(rank);
   mem.accelerationStructures = gpu.accelerationStructureBytes();
   json_["device"] = device;
@@ -42,19 +43,29 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["load_seconds_max"] = coll_.max(loadSeconds);
   json_["prepare_seconds_max"] = coll_.max(prepSeconds);
   json_["prepare_from_cache"] = fromCache;
+  // Per-rank load as the paper's table reports it: min, max and average over ranks.
+  auto spread = [&](double v) {
+    return nlohmann::json{
+        {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
+  };
   json_["elements"] = coll_.sum(rank.numElements());
-  json_["elements_max_rank"] = coll_.max(double(rank.numElements()));
+  json_["elements_per_rank"] = spread(double(rank.numElements()));
   json_["shell_triangles"] = coll_.sum(rank.numShellTriangles());
-  json_["shell_triangles_max_rank"] = coll_.max(double(rank.numShellTriangles()));
+  json_["shell_triangles_per_rank"] = spread(double(rank.numShellTriangles()));
   json_["device_bytes_max_rank"] = coll_.max(double(gpu.deviceBytes()));
   json_["memory_rank0"] = mem;
 }
 
-void StatsReport::addFrame(uint64_t step, const render::FrameResult& f, const render::Renderer& renderer) {
-  // Per-pixel counts cost a download per frame: only when statistics are asked for.
-  const bool wanted = job_.stats || !job_.statsJson.empty();
-  PixelCountSummary seg = wanted ? summarise(renderer.lastSegmentCounts()) : PixelCountSummary{};
-  PixelCountSummary frag = wanted ? summarise(renderer.lastFragmentCounts()) : PixelCountSummary{};
+bool StatsReport::wanted() const {
+  return job_.stats || !job_.statsJson.empty();
+}
+
+void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
+                           const render::Renderer& renderer, comp::DeepCompositor& compositor) {
+  if (!wanted()) return;  // per-pixel counts cost a download and a gather per frame
+  PixelCountSummary seg = summarise(renderer.lastSegmentCounts());
+  PixelCountSummary frag = summarise(renderer.lastFragmentCounts());
+  std::vector<comp::CompositeStats> ranks = compositor.gatherStats();
   nlohmann::json fr;
   fr["step"] = step;
   fr["total_ms"] = coll_.max(f.timings.totalMs);
@@ -76,42 +87,91 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f, const re
   fr["samples"] = coll_.sum(uint64_t(f.counters.samples));
   fr["element_steps"] = coll_.sum(uint64_t(f.counters.elementSteps));
   fr["camera_inside_rays"] = coll_.sum(uint64_t(f.counters.cameraInside));
+  // Integration (traversal + marching) against compositing, slowest rank each.
+  fr["integration_ms"] = coll_.max(f.timings.traversalMs + f.timings.scanMs + f.timings.marchMs);
+  fr["compositing_ms"] = coll_.max(f.timings.compositeMs);
+  nlohmann::json perRank = nlohmann::json::array();
+  for (size_t r = 0; r < ranks.size(); ++r)
+    perRank.push_back({{"rank", r},
+                       {"fragments", ranks[r].fragments},
+                       {"fragments_per_nonempty_pixel", ranks[r].fragmentsPerNonEmptyPixel()},
+                       {"bytes_sent", ranks[r].bytesSent},
+                       {"count_bytes_sent", ranks[r].countBytesSent},
+                       {"fragment_bytes_sent", ranks[r].fragmentBytesSent},
+                       {"counter_bits", ranks[r].counterBits},
+                       {"composite_ms", ranks[r].milliseconds}});
+  fr["ranks"] = perRank;
   json_["frames"].push_back(fr);
+}
+
+void StatsReport::printSetup() const {
+  const auto& j = json_;
+  std::printf("shellmarch render: %s on %s, %d rank(s), %dx%d, dt %.4g\n", job_.mesh.c_str(),
+              j["device"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height,
+              j["dt"].get<double>());
+  std::printf("  load %.2f s, prepare %.2f s%s; %llu elements, %llu shell triangles\n",
+              j["load_seconds_max"].get<double>(), j["prepare_seconds_max"].get<double>(),
+              j["prepare_from_cache"].get<bool>() ? " (from cache)" : "",
+              (unsigned long long)j["elements"].get<uint64_t>(),
+              (unsigned long long)j["shell_triangles"].get<uint64_t>());
+  if (coll_.size() > 1) {
+    const auto &e = j["elements_per_rank"], &sh = j["shell_triangles_per_rank"];
+    std::printf(
+        "  per rank: elements min %.0f max %.0f avg %.0f; shell triangles min %.0f max %.0f avg "
+        "%.0f\n",
+        e["min"].get<double>(), e["max"].get<double>(), e["avg"].get<double>(),
+        sh["min"].get<double>(), sh["max"].get<double>(), sh["avg"].get<double>());
+  }
+}
+
+void StatsReport::printFrame(const nlohmann::json& fr) const {
+  auto u = [&](const char* k) { return (unsigned long long)fr[k].get<uint64_t>(); };
+  std::printf(
+      "  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
+      "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
+      u("step"), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(),
+      fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(), fr["composite_ms"].get<double>(),
+      fr["integration_ms"].get<double>(), fr["compositing_ms"].get<double>());
+  std::printf(
+      "    segments/pixel mean %.2f max %.0f; fragments/pixel mean %.2f max %.0f (non-empty "
+      "pixels)\n",
+      fr["segments_per_pixel_mean_rank0"].get<double>(), fr["segments_per_pixel_max"].get<double>(),
+      fr["fragments_per_pixel_mean_rank0"].get<double>(),
+      fr["fragments_per_pixel_max"].get<double>());
+  std::printf(
+      "    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow "
+      "%llu; "
+      "%llu samples, %llu element steps\n",
+      u("lost_rays"), u("grazing_skips"), u("entry_corrections"), u("step_limit_hits"),
+      u("fragment_overflow"), u("samples"), u("element_steps"));
+  if (coll_.size() > 1)
+    for (const auto& r : fr["ranks"])
+      std::printf(
+          "    rank %llu: %llu fragments (%.2f per non-empty pixel), sent %llu bytes (counts %llu "
+          "at %u bits, "
+          "fragments %llu), compositing %.1f ms\n",
+          (unsigned long long)r["rank"].get<uint64_t>(),
+          (unsigned long long)r["fragments"].get<uint64_t>(),
+          r["fragments_per_nonempty_pixel"].get<double>(),
+          (unsigned long long)r["bytes_sent"].get<uint64_t>(),
+          (unsigned long long)r["count_bytes_sent"].get<uint64_t>(),
+          r["counter_bits"].get<uint32_t>(),
+          (unsigned long long)r["fragment_bytes_sent"].get<uint64_t>(),
+          r["composite_ms"].get<double>());
 }
 
 void StatsReport::finish(uint64_t validationErrors) {
   uint64_t errors = coll_.sum(validationErrors);
   json_["validation_errors"] = errors;
   if (coll_.rank() == 0 && job_.stats) {
-    const auto& j = json_;
-    std::printf("shellmarch render: %s on %s, %d rank(s), %dx%d, dt %.4g\n", job_.mesh.c_str(),
-                j["device"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height, j["dt"].get<double>());
-    std::printf("  load %.2f s, prepare %.2f s%s; %llu elements, %llu shell triangles\n",
-                j["load_seconds_max"].get<double>(), j["prepare_seconds_max"].get<double>(),
-                j["prepare_from_cache"].get<bool>() ? " (from cache)" : "",
-                (unsigned long long)j["elements"].get<uint64_t>(), (unsigned long long)j["shell_triangles"].get<uint64_t>());
-    for (const auto& fr : j["frames"]) {
-      std::printf("  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f\n",
-                  (unsigned long long)fr["step"].get<uint64_t>(), fr["total_ms"].get<double>(),
-                  fr["traversal_ms"].get<double>(), fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(),
-                  fr["composite_ms"].get<double>());
-      std::printf("    segments/pixel mean %.2f max %.0f; fragments/pixel mean %.2f max %.0f (non-empty pixels)\n",
-                  fr["segments_per_pixel_mean_rank0"].get<double>(), fr["segments_per_pixel_max"].get<double>(),
-                  fr["fragments_per_pixel_mean_rank0"].get<double>(), fr["fragments_per_pixel_max"].get<double>());
-      std::printf("    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow %llu; "
-                  "%llu samples, %llu element steps\n",
-                  (unsigned long long)fr["lost_rays"].get<uint64_t>(), (unsigned long long)fr["grazing_skips"].get<uint64_t>(),
-                  (unsigned long long)fr["entry_corrections"].get<uint64_t>(),
-                  (unsigned long long)fr["step_limit_hits"].get<uint64_t>(),
-                  (unsigned long long)fr["fragment_overflow"].get<uint64_t>(),
-                  (unsigned long long)fr["samples"].get<uint64_t>(), (unsigned long long)fr["element_steps"].get<uint64_t>());
-    }
+    printSetup();
+    for (const auto& fr : json_["frames"]) printFrame(fr);
   }
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";
-    writeBytesAtomically(job_.statsJson, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
+    writeBytesAtomically(job_.statsJson,
+                         {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
   }
   if (errors) throw Error("the Vulkan validation layer reported ", errors, " error(s)");
 }
-
 }  // namespace sm::app

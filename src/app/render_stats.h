@@ -28,9 +28,12 @@ PixelCountSummary summarise(const std::vector<uint32_t>& counts);
 class StatsReport {
  public:
   StatsReport(const RenderJob& job, Collectives& coll);
-  void setSetup(double loadSeconds, double prepSeconds, bool fromCache, const prep::PreparedRank& rank,
-                const render::GpuScene& gpu, const std::string& device, const render::RenderSettings& s);
-  void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer);
+  void setSetup(double loadSeconds, double prepSeconds, bool fromCache,
+                const prep::PreparedRank& rank, const render::GpuScene& gpu,
+                const std::string& device, const render::RenderSettings& s);
+  // Collective when statistics are asked for (gathers every rank's compositing statistics).
+  void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer,
+                comp::DeepCompositor& compositor);
   // Prints (rank 0) and writes JSON; throws when validation reported errors.
   void finish(uint64_t validationErrors);
 
@@ -38,6 +41,9 @@ class StatsReport {
   const RenderJob& job_;
   Collectives& coll_;
   nlohmann::json json_;
+  bool wanted() const;
+  void printSetup() const;
+  void printFrame(const nlohmann::json& fr) const;
 };
 
 }  // namespace sm::app

@@ -47,6 +47,24 @@ double vortexField(const glm::dvec3& u, double t) {
   return profile / peak;
 }
 
+// Density around a blunt body of unit radius at the origin facing -x in a hypersonic stream along
+// +x (the capsule and lander; in world units, not normalised): a paraboloidal bow shock standing
+// off the nose, whose jump weakens from the strong-shock 5.5 on the axis to 1 as it turns oblique,
+// a shock layer compressing further towards the nose, and a low-density wake that sways with time.
+double densityField(const glm::dvec3& p, double t) {
+  const double r2 = p.y * p.y + p.z * p.z, shockRadius = 1.7;
+  const double standoff = -0.45 - 0.05 * std::sin(2.0 * kPi * t);
+  const double xs = standoff + r2 / (2.0 * shockRadius);  // the shock surface
+  const double jump = 4.5 / (1.0 + r2 / (shockRadius * shockRadius));
+  const double behind = 0.5 * (1.0 + std::tanh((p.x - xs) / 0.06));
+  const double layer = 0.8 * std::exp(-(p.x - standoff) * (p.x - standoff) / 0.5 - r2 / 1.5);
+  const double x = std::max(p.x - 1.2, 0.0);
+  const double sway = 0.35 * std::sin(2.0 * kPi * (t - x / 6.0)) * std::min(x / 3.0, 1.0);
+  const double wr2 = (p.y - sway) * (p.y - sway) + p.z * p.z, width = 0.8 + 0.12 * x;
+  const double wake = p.x > 0.6 ? 0.75 * std::exp(-wr2 / (width * width) - x / 12.0) : 0.0;
+  return 1.0 + behind * (jump + layer) * (1.0 - 0.8 * (p.x > 0.6 ? std::exp(-wr2) : 0.0)) - wake;
+}
+
 void setField(mesh::UnstructuredMesh& mesh, const std::string& name,
               std::vector<std::vector<float>> steps) {
   auto it = std::find_if(mesh.fields.begin(), mesh.fields.end(),
@@ -65,7 +83,7 @@ void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps) {
   const mesh::Bounds b = mesh.bounds();
   const glm::dvec3 lo = b.lo, extent = glm::max(b.extent(), glm::dvec3(1e-300));
   const size_t n = mesh.points.size();
-  std::vector<std::vector<float>> linear(steps), shock(steps), vortex(steps);
+  std::vector<std::vector<float>> linear(steps), shock(steps), vortex(steps), density(steps);
   mesh.timeValues.assign(steps, 0.0);
   for (int s = 0; s < steps; ++s) {
     const double t = steps == 1 ? 0.0 : double(s) / double(steps - 1);
@@ -73,18 +91,21 @@ void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps) {
     linear[s].resize(n);
     shock[s].resize(n);
     vortex[s].resize(n);
+    density[s].resize(n);
     parallelFor(int64_t(n), [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         const glm::dvec3 u = (mesh.points[i] - lo) / extent;
         linear[s][i] = float(linearField(u));
         shock[s][i] = float(shockField(u, t));
         vortex[s][i] = float(vortexField(u, t));
+        density[s][i] = float(densityField(mesh.points[i], t));
       }
     });
   }
   setField(mesh, "linear", std::move(linear));
   setField(mesh, "shock", std::move(shock));
   setField(mesh, "vortex", std::move(vortex));
+  setField(mesh, "density", std::move(density));
 }
 
 }  // namespace sm::gen

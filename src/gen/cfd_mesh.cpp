@@ -1,6 +1,16 @@
 // generateCfdMesh: body surface mesh (OpenCASCADE model) -> boundary layer (built-in kernel model,
 // the only one that extrudes boundary layers) -> pyramid caps and the optional hexahedral block
 // (ours) -> far-field tetrahedra (gmsh) -> METIS clusters -> analytic fields.
+//
+// Generation time (one gmsh thread, one cluster), measured by hand on the 2-core development
+// machine while it was shared (load average 7 to 11: wall time ran at about twice the CPU time):
+//   target      capsule              lander               capsule + hex block
+//   100 k       2.3 s CPU, 0.11 GB   2.5 s CPU, 0.12 GB
+//   500 k      16 s CPU,   0.31 GB  17 s CPU,   0.34 GB
+//   1 M        45 s CPU,   0.58 GB  40 s CPU,   0.58 GB  37 s CPU, 0.57 GB
+//   5 M        capsule: 321 s wall (load 3 to 5), 2.6 GB, 5.02 M elements
+//   10 M       lander: 2449 s wall (load 10 to 12), 5.1 GB, 10.23 M elements
+// METIS adds about a tenth for 8 clusters; the analytic fields take well under 1%.
 #include <gmsh.h>
 
 #include "common/error.h"

@@ -18,7 +18,7 @@ struct CfdMeshOptions {
   int steps = 1;                     // time steps of the analytic fields
   bool hexBlock = false;             // add a block of hexahedra in the wake
   uint64_t seed = 1;
-  int threads = 0;  // gmsh threads (0 = all cores)
+  int threads = 1;  // gmsh threads (0 = all cores); 1 is bit-reproducible and no slower in gmsh 4.8
 };
 
 // A body in a far-field box: boundary-layer wedges (prisms) on the body, hexahedra in the layer on
@@ -28,10 +28,9 @@ struct CfdMeshOptions {
 // analytic point fields (see addAnalyticFields) over `steps` steps. The far-field box is
 // [-6, rear + 14] x [-7, 7]^2 in units of the body radius; the flow runs along +x.
 // The element count is within ~25% of the target from 10 thousand to 10 million (the lander has at
-// least ~10 thousand: its legs and nozzles need a minimum resolution). gmsh 4.8's tetrahedra are
-// not bit-reproducible between runs (their order depends on heap addresses); the wall, the layer
-// and the pyramids are. Throws sm::Error for bad options and when gmsh fails three times at nearby
-// sizes.
+// least ~10 thousand: its legs and nozzles need a minimum resolution). With one thread the mesh is
+// bit-identical between runs; with more, gmsh's parallel meshing may vary the tetrahedra slightly.
+// Throws sm::Error for bad options and when gmsh fails three times at nearby sizes.
 mesh::UnstructuredMesh generateCfdMesh(const CfdMeshOptions& options);
 
 // Tiny analytic meshes for tests (unit-sized, positively oriented, one cluster).
@@ -47,7 +46,9 @@ mesh::UnstructuredMesh cube(CubeSplit split, int n = 1, double size = 1.0);
 // Adds analytic point fields over `steps` time steps, t in [0, 1]:
 //   "linear"  x + 2y + 3z (normalised to the bounds), the same every step;
 //   "shock"   a smoothed planar shock moving through the domain;
-//   "vortex"  a swirling vortex whose centre moves with time.
+//   "vortex"  a swirling vortex whose centre moves with time;
+//   "density" a bow shock, shock layer and swaying wake around a unit body at the origin facing -x
+//             (world units: made for the capsule and the lander).
 void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps);
 
 }  // namespace sm::gen

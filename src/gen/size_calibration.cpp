@@ -1,5 +1,5 @@
-// Element counts measured at a range of scales (gmsh 4.8, Debian 12; the count varies by about 1%
-// between runs because gmsh's volume refinement is not reproducible). Between samples the scale is
+// Element counts measured at a range of scales (gmsh 4.8, Debian 12, one thread; checked at 5 and
+// 10 million: +0.5% and +2.3%). Between samples the scale is
 // interpolated in log-log; finer than the last sample it follows the last segment's slope (about
 // -2.9: tetrahedra go as scale^-3, the layer as scale^-2). Coarser than the first sample is not
 // offered: no mesh coarser than that was checked, and the lander's legs and nozzles keep a minimum

@@ -26,7 +26,9 @@ std::vector<int> assignClustersToRanks(const std::vector<uint64_t>& clusterSizes
 
 // The elements of the given clusters as one mesh: unused points dropped, points renumbered in
 // their original order, fields and cluster ids kept. Faces between these clusters are shared by
-// vertex ids (as in the input), so preparation sees them as interior.
+// vertex ids (as in the input), so preparation sees them as interior. Time values and the source
+// name are copied; the counts of skipped and fixed cells stay with the input. Ids in `clusters`
+// that the mesh does not have select nothing.
 mesh::UnstructuredMesh extractClusters(const mesh::UnstructuredMesh& mesh,
                                        const std::vector<int>& clusters);
 

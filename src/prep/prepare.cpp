@@ -93,7 +93,7 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   return result;
 }
 
-std::vector<float> gatherScalars(const PreparedRank& rank, const std::vector<float>& meshValues) {
+std::vector<float> gatherScalars(const PreparedRank& rank, std::span<const float> meshValues) {
   std::vector<float> out(rank.vertexSource.size());
   for (size_t i = 0; i < out.size(); ++i) {
     uint32_t src = rank.vertexSource[i];

@@ -1,6 +1,7 @@
 // Per-rank preparation: global vertex order and rebasing, connectivity, shell, compaction.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "mesh/unstructured_mesh.h"
@@ -27,6 +28,6 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                        const PrepOptions& options);
 
 // One step of one field in this rank's vertex order (what the GPU scalar buffer holds).
-std::vector<float> gatherScalars(const PreparedRank& rank, const std::vector<float>& meshValues);
+std::vector<float> gatherScalars(const PreparedRank& rank, std::span<const float> meshValues);
 
 }  // namespace sm::prep

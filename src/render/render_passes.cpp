@@ -26,18 +26,21 @@ vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
 }  // namespace
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
-                                                  const comp::DeepCompositor& compositor) {
+                                                  const comp::DeepCompositor& compositor,
+                                                  PassOptions options) {
   return {{0, scene.compact() ? 1u : 0u},
-          {1, scene.typesPresent()},
+          {1, options.allTypes ? 0xFu : scene.typesPresent()},
           {10, ctx.hasFloat64() ? 1u : 0u},
           {11, scene.shellGeometry() == ShellGeometry::Boxes ? 1u : 0u},
+          {12, options.elementExact ? 1u : 0u},
+          {13, options.shading ? 1u : 0u},
           {100, compositor.modeConstant()},
           {101, compositor.encodingConstant()}};
 }
 
 TraversalPass::TraversalPass(const vk::Context& ctx, const GpuScene& scene,
-                             const comp::DeepCompositor& c) {
-  auto spec = sceneSpecialization(ctx, scene, c);
+                             const comp::DeepCompositor& c, PassOptions options) {
+  auto spec = sceneSpecialization(ctx, scene, c, options);
   auto countSpec = spec, storeSpec = spec;
   countSpec.push_back({20, 0u});
   storeSpec.push_back({20, 1u});
@@ -53,17 +56,19 @@ void TraversalPass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int
   dispatchPixels(store_, cmd, params, w, h);
 }
 
-MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c)
-    : pipeline_(makePipeline(ctx, "march", spv::march(), sceneSpecialization(ctx, scene, c), false,
-                             scene)) {}
+MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
+                     PassOptions options)
+    : pipeline_(makePipeline(ctx, "march", spv::march(),
+                             sceneSpecialization(ctx, scene, c, options), false, scene)) {}
 
 void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(pipeline_, cmd, params, w, h);
 }
 
-FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c)
+FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
+                     PassOptions options)
     : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),
-                             sceneSpecialization(ctx, scene, c), true, scene)) {}
+                             sceneSpecialization(ctx, scene, c, options), true, scene)) {}
 
 void FusedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(pipeline_, cmd, params, w, h);

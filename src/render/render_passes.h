@@ -11,13 +11,25 @@ namespace sm::render {
 
 // Specialization shared by every pass: scene (compaction, element types present), device
 // (float64 available) and the compositor's list mode and encoding.
+// What a frame's settings add to the specialisation.
+// What a frame's pipelines are specialised for besides the scene (DESIGN.md, "pay only for what
+// the scene uses"): each combination is its own pipeline, built on first use.
+struct PassOptions {
+  bool elementExact = false;
+  bool shading = false;
+  bool allTypes = false;  // benchmarks: as if every element type were present (no type folding)
+  static constexpr int kCombinations = 8;
+  int index() const { return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0); }
+};
+
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
-                                                  const comp::DeepCompositor& compositor);
+                                                  const comp::DeepCompositor& compositor,
+                                                  PassOptions options);
 
 class TraversalPass {
  public:
   TraversalPass(const vk::Context& ctx, const GpuScene& scene,
-                const comp::DeepCompositor& compositor);
+                const comp::DeepCompositor& compositor, PassOptions options);
   void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
@@ -27,7 +39,8 @@ class TraversalPass {
 
 class MarchPass {
  public:
-  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+            PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
@@ -36,7 +49,8 @@ class MarchPass {
 
 class FusedPass {
  public:
-  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+            PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:

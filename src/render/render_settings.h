@@ -3,19 +3,40 @@
 
 #include <cstdint>
 
+#include "compositor/deep_compositor.h"
 #include "scene/camera.h"
 #include "scene/transfer_function.h"
 
 namespace sm::render {
 
+// Fixed-step sampling on the global grid t = k dt (the paper's method), or element-exact
+// integration: every element crossing integrated with the pre-integrated transfer function.
+enum class Integration { Sampled, ElementExact };
+
+// Blinn-Phong shading from the scalar gradient with a headlight (off by default: it costs a
+// gradient per sample). The colour from the transfer function becomes
+// rgb * (ambient + diffuse |n.l|) + specular |n.l|^shininess, n the unit gradient; samples with a
+// zero gradient stay unshaded.
+struct Shading {
+  bool enabled = false;
+  double ambient = 0.3, diffuse = 0.7, specular = 0.2, shininess = 20.0;
+};
+
 struct RenderSettings {
   int width = 512, height = 512;
   scene::Camera camera;
   scene::TransferFunction transferFunction;
-  double dt = 0.01;                     // sample spacing along rays, world units
+  double dt = 0.01;  // sample spacing along rays, world units
+  Integration integration = Integration::Sampled;
+  Shading shading;
+  // Benchmarks only: pipelines specialised for every element type, whatever the scene holds, to
+  // measure what specialisation saves.
+  bool allTypePipelines = false;
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
   uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)
+  // Deep (exact, the paper's) or single-fragment compositing (IceT-like, for comparison).
+  comp::CompositeMethod compositeMethod = comp::CompositeMethod::Deep;
 };
 
 }  // namespace sm::render

@@ -1,12 +1,14 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cstring>
 
 #include <glm/common.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "common/check.h"
 #include "common/error.h"
+#include "common/hash.h"
 
 namespace sm::render {
 namespace {
@@ -23,16 +25,48 @@ glm::vec3 toFloat(const glm::dvec3& v) {
 
 Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor)
     : ctx_(ctx), scene_(scene), compositor_(compositor), timestamps_(ctx, 8) {
-  if (compositor.options().mode == comp::ListMode::TwoPass) {
-    traversal_ = std::make_unique<TraversalPass>(ctx, scene, compositor);
-    march_ = std::make_unique<MarchPass>(ctx, scene, compositor);
-  } else {
-    fused_ = std::make_unique<FusedPass>(ctx, scene, compositor);
-  }
+  if (twoPass())
+    traversal_ = std::make_unique<TraversalPass>(ctx, scene, compositor, PassOptions{});
   params_ = vk::Buffer(ctx, sizeof(gpu::FrameParams), vk::kStorageUsage, vk::MemoryUse::Upload,
                        "frame params");
   stats_ = vk::Buffer(ctx, sizeof(gpu::RenderStats), vk::kStorageUsage, vk::MemoryUse::Readback,
                       "render stats");
+}
+
+MarchPass& Renderer::marchPass(PassOptions options) {
+  auto& p = march_[options.index()];
+  if (!p) p = std::make_unique<MarchPass>(ctx_, scene_, compositor_, options);
+  return *p;
+}
+
+FusedPass& Renderer::fusedPass(PassOptions options) {
+  auto& p = fused_[options.index()];
+  if (!p) p = std::make_unique<FusedPass>(ctx_, scene_, compositor_, options);
+  return *p;
+}
+
+// The table depends on the transfer function only: rebuilt when that changes, not per frame.
+void Renderer::updatePreintegration(const RenderSettings& s) {
+  const scene::TransferFunction& tf = s.transferFunction;
+  Hasher h;
+  h.span(std::span<const glm::vec4>(tf.table))
+      .pod(tf.lo)
+      .pod(tf.hi)
+      .pod(tf.opacityScale)
+      .pod(tf.unitDistance);
+  uint64_t key = h.digest();
+  if (preintegration_.valid() && key == preintegrationKey_) return;
+  preintegrationTable_ = buildPreintegration(tf);
+  const PreintegrationTable& t = preintegrationTable_;
+  const size_t colorBytes = t.colors.size() * sizeof(glm::vec4), bytes = t.deviceBytes();
+  if (!preintegration_.valid() || preintegration_.size() < bytes)
+    preintegration_ = vk::Buffer(ctx_, bytes, vk::kStorageUsage, vk::MemoryUse::Device,
+                                 "pre-integrated transfer function");
+  std::vector<std::byte> packed(bytes);
+  std::memcpy(packed.data(), t.colors.data(), colorBytes);
+  std::memcpy(packed.data() + colorBytes, t.cumulative.data(), t.cumulative.size() * sizeof(float));
+  preintegration_.upload(packed.data(), bytes);
+  preintegrationKey_ = key;
 }
 
 gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
@@ -74,6 +108,17 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.tfEntries = uint32_t(tf.table.size());
   p.sigmaScale = float(tf.opacityScale / tf.unitDistance);
   p.earlyTermination = float(s.earlyTermination);
+  if (s.shading.enabled) {
+    const Shading& sh = s.shading;
+    if (!(sh.ambient >= 0 && sh.diffuse >= 0 && sh.specular >= 0 && sh.shininess >= 1 &&
+          sh.shininess <= 1024))
+      throw Error("--shading: coefficients must be >= 0 and the shininess in [1, 1024], not ",
+                  sh.ambient, ",", sh.diffuse, ",", sh.specular, ",", sh.shininess);
+    p.shadeAmbient = float(sh.ambient);
+    p.shadeDiffuse = float(sh.diffuse);
+    p.shadeSpecular = float(sh.specular);
+    p.shadeShininess = float(sh.shininess);
+  }
   p.maxElementSteps = s.maxElementSteps;
   p.maxSegments = s.maxSegments;
   comp::DeviceLists lists = compositor_.lists();
@@ -82,6 +127,18 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.fragCounts = lists.counts;
   p.fragments = lists.fragments;
   p.fragK = lists.fixedK;
+  if (s.integration == Integration::ElementExact) {
+    const PreintegrationTable& t = preintegrationTable_;
+    p.preintegration = preintegration_.address();
+    p.piScalarBins = uint32_t(t.scalarBins);
+    p.piLengthBins = uint32_t(t.lengthBins);
+    p.piSigmaMax = float(t.sigmaMax);
+    p.piTauMax = float(t.tauMax);
+    p.piCumulative = p.preintegration + t.colors.size() * sizeof(glm::vec4);
+    p.piCumulativeBins = uint32_t(t.cumulative.size());
+    p.piLo = float(t.lo);
+    p.piHi = float(t.hi);
+  }
   return p;
 }
 
@@ -114,6 +171,9 @@ FrameResult Renderer::render(const RenderSettings& s) {
     transferFunction_ = vk::Buffer(ctx_, table.size() * sizeof(glm::vec4), vk::kStorageUsage,
                                    vk::MemoryUse::Device, "transfer function");
   transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
+  if (s.integration == Integration::ElementExact) updatePreintegration(s);
+  passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled,
+                             s.allTypePipelines};
   gpu::FrameParams p = frameParams(s);
   FrameResult out;
   const gpu::RenderStats zero{};
@@ -123,7 +183,8 @@ FrameResult Renderer::render(const RenderSettings& s) {
   else
     renderFixed(s, p, out);
   auto tc = std::chrono::steady_clock::now();
-  out.pixels = compositor_.composite();
+  out.pixels = compositor_.composite(s.compositeMethod);
+  out.composite = compositor_.stats();
   out.timings.compositeMs = msSince(tc);
   stats_.download(&out.counters, sizeof out.counters);
   out.fragments = out.counters.fragments;
@@ -160,7 +221,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
     traversal_->recordStore(cmd, params_.address(), s.width, s.height);
     vk::computeBarrier(cmd);
     timestamps_.write(cmd, 1);
-    march_->record(cmd, params_.address(), s.width, s.height);
+    marchPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 2);
   });
   ts = timestamps_.results(3);
@@ -173,7 +234,7 @@ void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameRe
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
-    fused_->record(cmd, params_.address(), s.width, s.height);
+    fusedPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 1);
   });
   auto ts = timestamps_.results(2);

@@ -8,6 +8,7 @@
 
 #include "compositor/deep_compositor.h"
 #include "render/gpu_scene.h"
+#include "render/preintegration.h"
 #include "render/render_passes.h"
 #include "render/render_settings.h"
 
@@ -31,8 +32,9 @@ struct FrameResult {
   std::vector<glm::vec4> pixels;  // premultiplied RGBA, row 0 at the top; rank 0 only
   gpu::RenderStats counters{};
   FrameTimings timings;
-  uint64_t segments = 0;   // segments found this frame on this rank
-  uint64_t fragments = 0;  // fragments written this frame on this rank
+  uint64_t segments = 0;           // segments found this frame on this rank
+  uint64_t fragments = 0;          // fragments written this frame on this rank
+  comp::CompositeStats composite;  // this rank's share of compositing
 };
 
 class Renderer {
@@ -60,9 +62,19 @@ class Renderer {
   const vk::Context& ctx_;
   const GpuScene& scene_;
   comp::DeepCompositor& compositor_;
+  // Marching pipelines per integration mode, built the first time a frame asks for that mode.
+  MarchPass& marchPass(PassOptions options);
+  FusedPass& fusedPass(PassOptions options);
+  void updatePreintegration(const RenderSettings& s);
+  bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
+
   std::unique_ptr<TraversalPass> traversal_;
-  std::unique_ptr<MarchPass> march_;
-  std::unique_ptr<FusedPass> fused_;
+  std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
+  std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
+  PassOptions passOptions_;  // of the frame being rendered
+  vk::Buffer preintegration_;
+  uint64_t preintegrationKey_ = 0;
+  PreintegrationTable preintegrationTable_;
   vk::Buffer params_, stats_, transferFunction_, segments_, rays_;
   uint64_t lastSegmentTotal_ = 0;
   bool useRays_ = false;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
@@ -55,6 +57,47 @@ void writePngRgba(const std::string& path, const Image& img) {
   for (size_t i = 0; i < img.pixels.size(); ++i)
     for (int c = 0; c < 4; ++c) raw[4 * i + c] = toByte(img.pixels[i][c]);
   writeEncoded(path, raw, img.width, img.height, 4);
+}
+
+void writePfm(const std::string& path, const Image& img, const glm::vec3& bg) {
+  std::string header = "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1.0\n";
+  std::vector<uint8_t> bytes(header.begin(), header.end());
+  bytes.reserve(bytes.size() + size_t(img.width) * img.height * 12);
+  for (int y = img.height - 1; y >= 0; --y) {
+    for (int x = 0; x < img.width; ++x) {
+      const glm::vec4& p = img.at(x, y);
+      glm::vec3 c = glm::vec3(p) + (1.0f - p.a) * bg;
+      const uint8_t* raw = reinterpret_cast<const uint8_t*>(&c);
+      bytes.insert(bytes.end(), raw, raw + 12);
+    }
+  }
+  writeBytesAtomically(path, bytes);
+}
+
+Image readPfm(const std::string& path) {
+  auto bytes = readFile(path);
+  std::string head(bytes.begin(), bytes.begin() + std::min<size_t>(bytes.size(), 64));
+  int w = 0, h = 0, used = 0;
+  float scale = 0;
+  if (std::sscanf(head.c_str(), "PF %d %d %f%n", &w, &h, &scale, &used) != 3 || w <= 0 || h <= 0 || scale >= 0)
+    throw FileError(path, "not a little-endian colour PFM");
+  size_t at = size_t(used) + 1;  // one whitespace byte ends the header
+  if (bytes.size() < at + size_t(w) * h * 12) throw FileError(path, "truncated PFM");
+  Image img(w, h);
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = 0; x < w; ++x, at += 12) {
+      glm::vec3 c;
+      std::memcpy(&c, bytes.data() + at, 12);
+      img.at(x, y) = glm::vec4(c, 1.0f);
+    }
+  return img;
+}
+
+void writeImage(const std::string& path, const Image& img, const glm::vec3& background) {
+  std::string ext = fileExtension(path);
+  if (ext == ".png") return writePng(path, img, background);
+  if (ext == ".pfm") return writePfm(path, img, background);
+  throw Error("--out: '", path, "' must end in .png or .pfm");
 }
 
 Image readPng(const std::string& path) {

@@ -23,6 +23,12 @@ struct Image {
 void writePng(const std::string& path, const Image& img, const glm::vec3& background);
 // Writes the image's colour with alpha as an 8-bit RGBA PNG (debug and test artefacts).
 void writePngRgba(const std::string& path, const Image& img);
+// Portable float map (binary "PF", little-endian, bottom row first as the format says): the
+// composited colour over `background`, unquantised, for comparisons finer than 8 bits allow.
+void writePfm(const std::string& path, const Image& img, const glm::vec3& background);
+Image readPfm(const std::string& path);  // alpha = 1
+// Writes PNG or PFM by the file's extension (.png, .pfm); throws for other extensions.
+void writeImage(const std::string& path, const Image& img, const glm::vec3& background);
 // Reads an 8-bit PNG as an opaque image (alpha = 1 unless the file has alpha); throws on failure.
 Image readPng(const std::string& path);
 

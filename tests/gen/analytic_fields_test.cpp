@@ -8,12 +8,12 @@
 namespace sm::gen {
 namespace {
 
-TEST(AnalyticFields, AddsThreeFiniteFieldsWithTimeSteps) {
+TEST(AnalyticFields, AddsFourFiniteFieldsWithTimeSteps) {
   auto m = cube(CubeSplit::Hex, 8, 3.0);
   addAnalyticFields(m, 4);
-  ASSERT_EQ(m.fields.size(), 3u);
+  ASSERT_EQ(m.fields.size(), 4u);
   EXPECT_EQ(m.timeValues, (std::vector<double>{0.0, 1.0 / 3, 2.0 / 3, 1.0}));
-  for (const char* name : {"linear", "shock", "vortex"}) {
+  for (const char* name : {"linear", "shock", "vortex", "density"}) {
     const mesh::Field* f = m.findField(name);
     ASSERT_NE(f, nullptr) << name;
     ASSERT_EQ(f->numSteps(), 4u);
@@ -24,8 +24,25 @@ TEST(AnalyticFields, AddsThreeFiniteFieldsWithTimeSteps) {
   }
   // Calling again replaces the fields rather than adding copies.
   addAnalyticFields(m, 2);
-  EXPECT_EQ(m.fields.size(), 3u);
+  EXPECT_EQ(m.fields.size(), 4u);
   EXPECT_EQ(m.findField("shock")->numSteps(), 2u);
+}
+
+// The bow shock stands off the nose of a unit body at the origin facing -x: free stream (1) ahead
+// of it, the strong-shock jump (about 5.5 and more in the shock layer) just behind it on the axis,
+// a weaker oblique jump off the axis, and a wake below the shock layer's density behind the body.
+TEST(AnalyticFields, DensityHasABowShockAheadOfTheBody) {
+  mesh::UnstructuredMesh m;
+  m.points = {{-3.0, 0, 0}, {-0.2, 0, 0}, {-0.2, 0, 3.0}, {6.0, 0, 3.0}, {6.0, 0, 0}, {-1.0, 0, 0}};
+  addAnalyticFields(m, 1);
+  const std::vector<float>& d = m.findField("density")->steps[0];
+  EXPECT_NEAR(d[0], 1.0, 1e-6);  // upstream
+  EXPECT_NEAR(d[5], 1.0, 1e-3);  // ahead of the shock on the axis
+  EXPECT_GT(d[1], 5.5);          // shock layer at the nose
+  EXPECT_LT(d[2], 1.01);         // off the axis the shock is further downstream
+  EXPECT_GT(d[3], 1.5);          // behind the oblique part: weaker jump
+  EXPECT_LT(d[3], 4.0);
+  EXPECT_LT(d[4], d[3]);  // the wake
 }
 
 TEST(AnalyticFields, LinearIsAffineInTheCoordinatesAndConstantInTime) {

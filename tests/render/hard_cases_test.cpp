@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
+
+#include <glm/geometric.hpp>
 
 #include "mesh/mesh_builder.h"
 #include "ray_harness.h"
@@ -57,9 +60,10 @@ void expectRaysMatch(const std::string& name, const mesh::UnstructuredMesh& m,
   EXPECT_EQ(c.stepLimit, 0u) << name;
   EXPECT_EQ(c.nanRays, 0u) << name;
   EXPECT_LT(c.maxColorError, tol.color) << name << ": worst " << c.worst;
-  if (checkSegments) EXPECT_LT(c.maxDepthError, 1e-4 * size) << name;
-  if (checkSegments)
+  if (checkSegments) {
+    EXPECT_LT(c.maxDepthError, 1e-4 * size) << name;
     EXPECT_LE(double(c.segmentCountMismatches), tol.mismatchFraction * double(c.rays)) << name;
+  }
 }
 
 std::vector<float> smoothField(const mesh::UnstructuredMesh& m, glm::dvec3 lo, double size) {
@@ -76,6 +80,76 @@ TEST(HardCases, RaysThroughVerticesAndAlongEdges) {
     auto m = ref::test::cubeMesh(split, 4);
     expectRaysMatch("vertices_edges_" + ref::test::splitName(split), m,
                     smoothField(m, {0, 0, 0}, 1), hardSettings(0, 2, 1), 4);
+  }
+}
+
+// Rays grazing faces: lying exactly in the outer boundary planes and in interior face planes with
+// oblique in-plane directions (not the grid's axes), and rays meeting the boundary at a tilt of
+// 1e-6 to 1e-3 rad. In-plane rays are decided by the exact predicates: colour within 1e-3 of the
+// reference. A tilted ray's entry point is ill-conditioned in float: rounding of the projected
+// vertices (~1e-7 of the scene) moves it by ~1e-7 / tilt along the ray, so its colour may differ by
+// up to sigma_max * 3e-7 / tilt (measured: a third of that at worst). No lost ray, no NaN, either
+// way.
+struct GrazingRays {
+  std::vector<WorldRay> rays;
+  std::vector<double> tilt;  // 0: in the plane
+};
+
+GrazingRays grazingRays(int perPlane, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), angle(0.0, 6.283185307179586);
+  GrazingRays g;
+  for (double plane : {0.0, 0.25, 0.5, 1.0}) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int i = 0; i < perPlane; ++i) {
+        double a = angle(rng), tilt = 0;
+        glm::dvec3 d(0.0), o(0.5);
+        d[(axis + 1) % 3] = std::cos(a);
+        d[(axis + 2) % 3] = std::sin(a);
+        o[(axis + 1) % 3] = u(rng);
+        o[(axis + 2) % 3] = u(rng);
+        o[axis] = plane;
+        if (i % 4 == 3 && (plane == 0.0 || plane == 1.0)) {  // just touching the boundary
+          tilt = std::pow(10.0, -3.0 - 3.0 * u(rng));
+          d[axis] = plane == 0.0 ? tilt : -tilt;
+          d = glm::normalize(d);
+        }
+        g.rays.push_back({o - 3.0 * d, d});
+        g.tilt.push_back(tilt);
+      }
+    }
+  }
+  return g;
+}
+
+TEST(HardCases, RaysGrazingFaces) {
+  const RenderSettings s = hardSettings(0, 2, 1);
+  double sigmaMax = 0;
+  for (const auto& e : s.transferFunction.table)
+    sigmaMax = std::max(sigmaMax, double(e.a) / s.transferFunction.unitDistance);
+  for (Split split : {Split::Tets5, Split::Hex, Split::Pyramids}) {
+    auto m = ref::test::cubeMesh(split, 4);
+    GrazingRays g = grazingRays(900, 17);
+    ASSERT_GE(g.rays.size(), 10000u);
+    auto c = test::compareRays(m, smoothField(m, {0, 0, 0}, 1), s, g.rays);
+    EXPECT_EQ(c.lost, 0u);
+    EXPECT_EQ(c.stepLimit, 0u);
+    EXPECT_EQ(c.nanRays, 0u);
+    double inPlane = 0, tiltedRatio = 0;  // worst error; worst error over its bound
+    for (size_t i = 0; i < g.rays.size(); ++i) {
+      if (g.tilt[i] == 0) {
+        inPlane = std::max(inPlane, c.rayErrors[i]);
+        EXPECT_LT(c.rayErrors[i], 1e-3) << "in-plane ray " << i;
+      } else {
+        double bound = 1e-3 + sigmaMax * 3e-7 / g.tilt[i];
+        tiltedRatio = std::max(tiltedRatio, c.rayErrors[i] / bound);
+        EXPECT_LT(c.rayErrors[i], bound) << "ray " << i << " tilt " << g.tilt[i];
+      }
+    }
+    std::printf(
+        "[rays] grazing_%-20s %6llu rays: in-plane max colour error %.2g; tilted: worst "
+        "error / bound %.2g\n",
+        ref::test::splitName(split).c_str(), (unsigned long long)c.rays, inPlane, tiltedRatio);
   }
 }
 

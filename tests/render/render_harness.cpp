@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "prep/prepare.h"
@@ -11,6 +12,18 @@
 #include "vk/context.h"
 
 namespace sm::test {
+
+void rayBox(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double& t0, double& t1) {
+  t0 = 0;
+  t1 = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    double inv = 1.0 / d[a];
+    double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+}
 
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::string& field,
                       const render::RenderSettings& settings, const GpuRenderOptions& options) {

@@ -32,6 +32,9 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::string& fie
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
                       const render::RenderSettings& settings, const GpuRenderOptions& options = {});
 
+// Ray/box intersection in double: [t0, t1] of the ray (t >= 0) inside [lo, hi]^3, or t1 < t0.
+void rayBox(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double& t0, double& t1);
+
 // The mesh with its vertices renumbered in shellmarch's global vertex order (position-based, see
 // prep/vertex_order.h). Quads are split through their smallest vertex in that order, so the
 // reference must see the same numbering to triangulate warped quads as the GPU does.

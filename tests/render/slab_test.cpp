@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -12,18 +13,7 @@
 namespace sm::render {
 namespace {
 
-// Ray/box intersection in double: [t0, t1] of the ray inside [lo, hi]^3, or t1 < t0.
-void rayBox(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double& t0, double& t1) {
-  t0 = 0;
-  t1 = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    double inv = 1.0 / d[a];
-    double ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-}
+using test::rayBox;
 
 struct SlabCase {
   mesh::UnstructuredMesh mesh;
@@ -89,6 +79,45 @@ TEST(Slab, WedgeGrid) {
 }
 TEST(Slab, PyramidGrid) {
   expectSlab({test::pyramidGrid(2), "pyramid"});
+}
+
+// Element-exact integration has no sample grid: the slab's opacity is 1 - exp(-sigma L), up to
+// the pre-integration table's interpolation (the issue asks for 1e-3).
+void expectExactSlab(const SlabCase& c) {
+  RenderSettings s;
+  s.width = s.height = 48;
+  s.camera.eye = {1.9, 2.3, 2.7};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.camera.up = {0, 0, 1};
+  s.camera.fovyDeg = 40;
+  const double sigma = 1.3;
+  s.transferFunction = test::constantTransferFunction({0.2f, 0.6f, 1.0f}, 1.0f, 1.0 / sigma);
+  s.dt = 0.01;
+  s.earlyTermination = 2.0;
+  s.integration = Integration::ElementExact;
+  auto r = test::renderOnGpu(c.mesh, "", s);
+  EXPECT_EQ(r.validationErrors, 0u);
+  EXPECT_EQ(r.frame.counters.lostRays, 0u) << c.name;
+  auto cam = scene::cameraFrame(s.camera, s.width, s.height);
+  double worst = 0;
+  for (int y = 0; y < s.height; ++y) {
+    for (int x = 0; x < s.width; ++x) {
+      double t0, t1;
+      rayBox(cam.eye, cam.pixelDirection(x, y), glm::dvec3(0.0), glm::dvec3(1.0), t0, t1);
+      double L = t1 > t0 ? t1 - t0 : 0.0;
+      worst = std::max(worst, std::abs(r.image.at(x, y).a - (1.0 - std::exp(-sigma * L))));
+    }
+  }
+  std::printf("[slab] element-exact %-8s max |alpha - (1 - exp(-sigma L))| = %.2g\n", c.name,
+              worst);
+  EXPECT_LT(worst, 1e-3) << c.name;
+}
+
+TEST(Slab, ElementExactIsAnalytic) {
+  expectExactSlab({test::hexGrid(3), "hex"});
+  expectExactSlab({test::kuhnTetGrid(3), "tet"});
+  expectExactSlab({test::wedgeGrid(2), "wedge"});
+  expectExactSlab({test::pyramidGrid(2), "pyramid"});
 }
 
 }  // namespace

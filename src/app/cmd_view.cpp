@@ -1,0 +1,59 @@
+// shellmarch view MESH [the data, camera and transfer-function options of render]
+//                      [--frames K] [--script FILE] [--screenshot FILE] [--print-camera]
+//                      [--headless]
+// An interactive window on rank 0 (GLFW, presented through a Vulkan swapchain); every rank renders
+// every frame. Controls: `shellmarch view --help-controls`; script format: `--help-script`.
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/run_parallel.h"
+#include "app/scene_options.h"
+#include "app/view/input.h"
+#include "app/view/script.h"
+#include "app/view/viewer.h"
+
+namespace sm::app {
+
+void registerView(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "view", "Interactive viewer (GLFW window on rank 0; data-parallel under mpirun)");
+  auto job = std::make_shared<RenderJob>();
+  auto raw = std::make_shared<SceneOptionText>();
+  auto opts = std::make_shared<view::ViewOptions>();
+  addSceneOptions(cmd, *job, *raw, "Time step index to start at (default 0)");
+  cmd->add_option("--frames", opts->frames, "Render this many frames, then exit");
+  cmd->add_option("--script", opts->script,
+                  "Replay input from this file, or '-' for standard input (format: --help-script)");
+  cmd->add_option(
+      "--screenshot", opts->screenshot,
+      "Write the last frame here at exit (PNG, no overlay); the s key writes FILE_NNNN.png");
+  cmd->add_flag(
+      "--print-camera", opts->printCamera,
+      "At exit, print the final camera and settings as one JSON line, with the render arguments");
+  cmd->add_flag("--headless", opts->headless,
+                "No window: present to a headless surface (needs --frames or --script)");
+  auto noOverlay = std::make_shared<bool>(false);
+  cmd->add_flag("--no-overlay", *noOverlay, "Start with the overlay hidden (o toggles it)");
+  cmd->add_flag_callback(
+      "--help-controls",
+      [] {
+        std::fputs(view::controlsHelp().c_str(), stdout);
+        throw CLI::Success();
+      },
+      "Print the mouse and key controls and exit");
+  cmd->add_flag_callback(
+      "--help-script",
+      [] {
+        std::fputs(view::scriptHelp().c_str(), stdout);
+        throw CLI::Success();
+      },
+      "Print the --script format and exit");
+  cmd->callback([job, raw, opts, noOverlay] {
+    applySceneOptions(*raw, *job);
+    opts->overlay = !*noOverlay;
+    runParallel([&](Collectives& coll) { view::runView(*job, *opts, coll); });
+  });
+}
+
+}  // namespace sm::app

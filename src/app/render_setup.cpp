@@ -1,0 +1,76 @@
+#include "app/render_setup.h"
+
+#include <cmath>
+
+#include "common/error.h"
+#include "common/log.h"
+#include "render/frame_defaults.h"
+
+namespace sm::app {
+
+void checkImageSize(const RenderJob& job) {
+  if (job.width <= 0 || job.height <= 0 || job.width > 16384 || job.height > 16384)
+    throw Error("--size: ", job.width, "x", job.height,
+                " is not a usable image size (1 .. 16384 per side)");
+}
+
+std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m) {
+  if (!job.field.empty()) return job.field;
+  if (m.fields.empty()) throw Error(job.mesh, ": has no point fields to render");
+  log::info("--field not given: rendering '", m.fields.front().name, "'");
+  return m.fields.front().name;
+}
+
+std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
+                                      const std::vector<uint64_t>& steps, Collectives& coll) {
+  mesh::Range r;
+  if (const mesh::Field* f = m.findField(field))
+    for (uint64_t s : steps) r.extend(mesh::fieldRange(*f, s));
+  double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
+  if (!(lo <= hi)) return {0.0, 1.0};
+  return {lo, hi};
+}
+
+scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
+  if (!job.eye) {
+    if (job.at || job.up) throw Error("--at and --up need --eye (or use --view)");
+    return scene::frameBounds(whole, scene::parseViewPreset(job.view),
+                              double(job.width) / job.height, job.fovy);
+  }
+  scene::Camera c;
+  c.eye = *job.eye;
+  c.at = job.at.value_or(whole.center());
+  c.up = job.up.value_or(glm::dvec3(0, 0, 1));
+  c.fovyDeg = job.fovy;
+  return c;
+}
+
+render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
+                                    std::pair<double, double> range) {
+  render::RenderSettings s;
+  s.width = job.width;
+  s.height = job.height;
+  s.camera = makeCamera(job, share.wholeBounds);
+  s.transferFunction = scene::makeTransferFunction(job.colormap);
+  s.transferFunction.lo = range.first;
+  s.transferFunction.hi = range.second;
+  s.transferFunction.opacityScale = job.opacityScale;
+  s.transferFunction.unitDistance =
+      job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
+  s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
+  s.earlyTermination = job.earlyTermination;
+  s.integration = job.integration;
+  s.shading = job.shading;
+  s.allTypePipelines = job.allTypePipelines;
+  if (!(s.transferFunction.unitDistance > 0)) throw Error("--unit-distance must be positive");
+  if (!(job.opacityScale >= 0)) throw Error("--opacity-scale must not be negative");
+  return s;
+}
+
+vk::ContextOptions contextOptions(const RenderJob& job) {
+  vk::ContextOptions vo;
+  vo.device = job.device;
+  return vo;
+}
+
+}  // namespace sm::app

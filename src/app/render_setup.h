@@ -1,0 +1,39 @@
+// What `render` and `view` do alike before their first frame, on every rank: check the job, pick
+// the field, its scalar range, the camera and the frame settings. Functions that take Collectives
+// are collective: every rank calls them in the same order.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/collectives.h"
+#include "app/rank_share.h"
+#include "app/render_job.h"
+#include "render/render_settings.h"
+#include "vk/context.h"
+
+namespace sm::app {
+
+// Throws naming --size when the image size is unusable.
+void checkImageSize(const RenderJob& job);
+
+// The job's field, or the mesh's first point field when none was asked for.
+std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m);
+
+// Range of `field` over `steps`, over all ranks; [0, 1] when no rank has a finite value.
+std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
+                                      const std::vector<uint64_t>& steps, Collectives& coll);
+
+// --eye/--at/--up/--fovy, or the --view preset framing the whole data set.
+scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole);
+
+// Settings for the job's first frame: camera, transfer function over `range`, sample step;
+// throws naming the option when a value is unusable.
+render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
+                                    std::pair<double, double> range);
+
+vk::ContextOptions contextOptions(const RenderJob& job);
+
+}  // namespace sm::app

@@ -1,0 +1,74 @@
+#include "app/scene_options.h"
+
+#include "app/cli_parsers.h"
+
+namespace sm::app {
+
+void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
+                     const std::string& timeHelp) {
+  auto& t = raw.text;
+  cmd->add_option("mesh", job.mesh, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
+  cmd->add_option("--field", job.field, "Point field to render (default: the first)");
+  cmd->add_option("--time", job.time, timeHelp);
+  cmd->add_option("--size", t["--size"], "Image size WxH (default 512x512)");
+  cmd->add_option("--eye", t["--eye"], "Camera position x,y,z");
+  cmd->add_option("--at", t["--at"], "Point looked at x,y,z (default: the data's centre)");
+  cmd->add_option("--up", t["--up"], "Up direction x,y,z (default 0,0,1)");
+  cmd->add_option("--fovy", job.fovy, "Vertical field of view in degrees (default 30)");
+  cmd->add_option("--view", job.view, "Framing view when no --eye: iso, +x, -x, +y, -y, +z, -z");
+  cmd->add_option(
+      "--colormap", job.colormap,
+      "viridis, cool-to-warm, inferno, plasma, grayscale, jet, turbo, or a ParaView .json");
+  cmd->add_option("--range", t["--range"], "Scalar range LO,HI (default: the field's range)");
+  cmd->add_option("--opacity-scale", job.opacityScale, "Multiplies the opacity map (default 1)");
+  cmd->add_option("--unit-distance", t["--unit-distance"],
+                  "Length over which opacity 1 gives optical depth 1 (default: diagonal / 8)");
+  cmd->add_option("--step", t["--step"],
+                  "Sample distance along rays (default: half the mean element size)");
+  cmd->add_option(
+      "--integration", t["--integration"],
+      "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");
+  cmd->add_flag("--all-type-pipelines", job.allTypePipelines,
+                "Benchmarks: pipelines for every element type whatever the mesh holds")
+      ->group("");  // hidden: measures what specialisation saves
+  cmd->add_flag("--shading", raw.shading,
+                "Blinn-Phong shading from the scalar gradient, headlight (off by default)");
+  cmd->add_option("--shading-params", t["--shading-params"],
+                  "Shading coefficients AMBIENT,DIFFUSE,SPECULAR,SHININESS (default "
+                  "0.3,0.7,0.2,20; implies --shading)");
+  cmd->add_option("--early-termination", job.earlyTermination,
+                  "Stop rays at this opacity (default 0.99)");
+  cmd->add_option("--background", t["--background"], "Background colour r,g,b in [0,1]");
+  cmd->add_option("--clusters", job.share.metisClusters, "Split into N clusters with METIS");
+  cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids");
+  cmd->add_option("--lists", t["--lists"],
+                  "Fragment lists: two-pass (exact), drop or merge (fixed K)");
+  cmd->add_option("--k", job.lists.fixedK, "Slots per pixel for fixed-length lists (default 8)");
+  cmd->add_option("--encoding", t["--encoding"], "Fragment encoding: float or rgba8");
+  cmd->add_flag("--plain", raw.plain, "Keep elements uncompacted (no XOR compaction)");
+  cmd->add_option("--device", job.device, "Vulkan device index or name substring");
+  cmd->add_option("--cache-dir", job.cacheDir, "Folder for the preparation cache (off by default)");
+}
+
+void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
+  auto get = [&](const char* k) -> const std::string& { return raw.text[k]; };
+  if (!get("--size").empty()) std::tie(job.width, job.height) = parseSize("--size", get("--size"));
+  if (!get("--eye").empty()) job.eye = parseVec3("--eye", get("--eye"));
+  if (!get("--at").empty()) job.at = parseVec3("--at", get("--at"));
+  if (!get("--up").empty()) job.up = parseVec3("--up", get("--up"));
+  if (!get("--range").empty()) job.range = parseRange("--range", get("--range"));
+  if (!get("--unit-distance").empty())
+    job.unitDistance = parsePositive("--unit-distance", get("--unit-distance"));
+  if (!get("--step").empty()) job.step = parsePositive("--step", get("--step"));
+  if (!get("--background").empty())
+    job.background = glm::vec3(parseVec3("--background", get("--background")));
+  if (!get("--lists").empty()) job.lists.mode = parseListMode(get("--lists"));
+  if (!get("--encoding").empty()) job.lists.encoding = parseEncoding(get("--encoding"));
+  if (!get("--integration").empty()) job.integration = parseIntegration(get("--integration"));
+  if (!get("--shading-params").empty())
+    job.shading = parseShading("--shading-params", get("--shading-params"));
+  if (raw.shading) job.shading.enabled = true;
+  job.compact = !raw.plain;
+}
+
+}  // namespace sm::app

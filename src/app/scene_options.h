@@ -1,0 +1,29 @@
+// Command-line options that `render` and `view` share: the data, camera, transfer function,
+// sampling, fragment lists and device. Values that need parsing are kept as text while CLI11
+// parses and turned into the RenderJob's fields afterwards, so errors name the option.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/render_job.h"
+
+namespace sm::app {
+
+struct SceneOptionText {
+  std::map<std::string, std::string> text;  // option name -> value as given
+  bool plain = false;
+  bool shading = false;
+};
+
+// Registers the shared options on `cmd`, in render's order; `timeHelp` describes --time, whose
+// accepted values differ between the commands. `job` and `raw` must outlive the parse.
+void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
+                     const std::string& timeHelp);
+
+// Parses the text options into `job`; throws sm::Error naming the option.
+void applySceneOptions(SceneOptionText& raw, RenderJob& job);
+
+}  // namespace sm::app

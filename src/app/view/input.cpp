@@ -1,0 +1,150 @@
+#include "app/view/input.h"
+
+#include <map>
+
+namespace sm::view {
+namespace {
+
+int cycle(int value, int delta, size_t count) {
+  if (count == 0) return 0;
+  const int n = int(count);
+  return ((value + delta) % n + n) % n;
+}
+
+}  // namespace
+
+Key keyFromName(const std::string& name) {
+  static const std::map<std::string, Key> keys = {
+      {"right", Key::NextStep},  {"left", Key::PrevStep},   {"up", Key::MoreOpaque},
+      {"down", Key::LessOpaque}, {"f", Key::NextField},     {"c", Key::NextColormap},
+      {"[", Key::FinerStep},     {"]", Key::CoarserStep},   {"r", Key::ResetView},
+      {"s", Key::Screenshot},    {"o", Key::ToggleOverlay}, {"h", Key::Help},
+      {"q", Key::Quit},          {"escape", Key::Quit}};
+  auto it = keys.find(name);
+  return it == keys.end() ? Key::None : it->second;
+}
+
+std::string controlsHelp() {
+  return "shellmarch view controls:\n"
+         "  left drag                     orbit about the point looked at\n"
+         "  middle drag, shift+left drag  pan\n"
+         "  wheel, right drag             zoom\n"
+         "  right / left                  next / previous time step\n"
+         "  f / shift+f                   next / previous field\n"
+         "  c / shift+c                   next / previous colour map\n"
+         "  up / down                     opacity scale times / divided by 1.25\n"
+         "  [ / ]                         finer / coarser sampling step (by 1.25)\n"
+         "  r                             reset the view\n"
+         "  s                             screenshot (PNG, without the overlay)\n"
+         "  o                             overlay on / off\n"
+         "  h                             print these controls (on stderr)\n"
+         "  q, escape                     quit\n";
+}
+
+InputHandler::InputHandler(const scene::Camera& home, const ViewChoices& choices)
+    : controller_(home), choices_(choices) {}
+
+void InputHandler::apply(const InputEvent& e, ViewState& state, LocalRequests& local) {
+  controller_.setCamera(state.camera());
+  switch (e.type) {
+    case InputEvent::Type::Move:
+      onMove(e.x, e.y, state);
+      break;
+    case InputEvent::Type::Press:
+      if (drag_ != Drag::None) break;  // the first button held decides the drag
+      dragButton_ = e.button;
+      if (e.button == Button::Middle || (e.button == Button::Left && e.shift))
+        drag_ = Drag::Pan;
+      else
+        drag_ = e.button == Button::Left ? Drag::Orbit : Drag::Zoom;
+      break;
+    case InputEvent::Type::Release:
+      if (e.button == dragButton_) drag_ = Drag::None;
+      break;
+    case InputEvent::Type::Scroll:
+      controller_.zoomWheel(e.y);
+      break;
+    case InputEvent::Type::KeyPress:
+      onKey(e, state, local);
+      break;
+    case InputEvent::Type::Screenshot:
+      local.screenshots.push_back(e.path);
+      break;
+    case InputEvent::Type::Resize:
+      local.resizeWidth = int(e.x);
+      local.resizeHeight = int(e.y);
+      break;
+    case InputEvent::Type::Quit:
+      state.quit = 1;
+      break;
+  }
+  state.setCamera(controller_.camera());
+}
+
+void InputHandler::onMove(double x, double y, ViewState& state) {
+  const double dx = x - cursorX_, dy = y - cursorY_;
+  cursorX_ = x;
+  cursorY_ = y;
+  switch (drag_) {
+    case Drag::Orbit:
+      controller_.orbitPixels(dx, dy, state.height);
+      break;
+    case Drag::Pan:
+      controller_.panPixels(dx, dy, state.height);
+      break;
+    case Drag::Zoom:
+      controller_.zoomPixels(dy, state.height);
+      break;
+    case Drag::None:
+      break;
+  }
+}
+
+void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& local) {
+  const int back = e.shift ? -1 : 1;
+  switch (e.key) {
+    case Key::NextStep:
+      ++state.step;  // every rank wraps it into the field's steps
+      break;
+    case Key::PrevStep:
+      --state.step;
+      break;
+    case Key::MoreOpaque:
+      state.opacityScale *= kOpacityFactor;
+      break;
+    case Key::LessOpaque:
+      state.opacityScale /= kOpacityFactor;
+      break;
+    case Key::NextField:
+      state.field = cycle(state.field, back, choices_.fields.size());
+      break;
+    case Key::NextColormap:
+      state.colormap = cycle(state.colormap, back, choices_.colormaps.size());
+      break;
+    case Key::FinerStep:
+      state.dt /= kStepFactor;
+      break;
+    case Key::CoarserStep:
+      state.dt *= kStepFactor;
+      break;
+    case Key::ResetView:
+      controller_.reset();
+      break;
+    case Key::Screenshot:
+      local.screenshots.push_back("");
+      break;
+    case Key::ToggleOverlay:
+      local.toggleOverlay = true;
+      break;
+    case Key::Help:
+      local.help = true;
+      break;
+    case Key::Quit:
+      state.quit = 1;
+      break;
+    case Key::None:
+      break;
+  }
+}
+
+}  // namespace sm::view

@@ -1,0 +1,153 @@
+#include "app/view/view_scene.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "app/render_setup.h"
+#include "common/error.h"
+#include "common/timer.h"
+
+namespace sm::view {
+namespace {
+
+// Rank 0's list, on every rank: a rank without clusters may have read no fields at all.
+std::vector<std::string> agreedFieldNames(const mesh::UnstructuredMesh& m, const std::string& first,
+                                          app::Collectives& coll) {
+  std::string joined;
+  if (coll.rank() == 0) {
+    joined = first;
+    for (const auto& f : m.fields)
+      if (f.name != first) joined += '\n' + f.name;
+  }
+  uint64_t bytes = joined.size();
+  coll.broadcast(&bytes, sizeof bytes);
+  joined.resize(bytes);
+  coll.broadcast(joined.data(), bytes);
+  std::vector<std::string> names;
+  for (size_t start = 0; start <= joined.size();) {
+    size_t end = std::min(joined.find('\n', start), joined.size());
+    names.push_back(joined.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
+
+std::vector<std::string> colormapChoices(const std::string& first) {
+  std::vector<std::string> all{first};
+  for (const auto& n : scene::builtinColormapNames())
+    if (n != first) all.push_back(n);
+  return all;
+}
+
+int wrap(int value, uint64_t count) {
+  const int n = int(std::max<uint64_t>(count, 1));
+  return ((value % n) + n) % n;
+}
+
+}  // namespace
+
+int parseViewStep(const std::string& time) {
+  char* end = nullptr;
+  long long t = std::strtoll(time.c_str(), &end, 10);
+  if (time.empty() || *end || t < 0 || t > 1 << 30)
+    throw Error("--time: '", time, "' is not a step index (view shows one step at a time)");
+  return int(t);
+}
+
+ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
+                     app::Collectives& coll)
+    : job_(job), coll_(coll) {
+  app::checkImageSize(job);
+  const int firstStep = parseViewStep(job.time);
+  Timer load;
+  share_ = app::loadRankShare(job.mesh, job.share, coll);
+  loadSeconds_ = load.seconds();
+  choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh), coll);
+  choices_.colormaps = colormapChoices(job.colormap);
+  selectField(0);
+  settings_ = app::makeSettings(job, share_, field_.range);
+  colormap_ = 0;
+  home_ = settings_.camera;
+  if (uint64_t(firstStep) >= field_.steps)
+    throw Error("--time: field '", field_.name, "' has ", field_.steps, " time steps (0 .. ",
+                field_.steps - 1, "), not step ", firstStep);
+  Timer prep;
+  prepared_ = app::prepareShare(share_, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(),
+                                coll.size());
+  prepareSeconds_ = prep.seconds();
+  ctx_ = std::make_unique<vk::Context>(vo);
+  gpu_ = std::make_unique<render::GpuScene>(*ctx_, prepared_.rank);
+}
+
+ViewScene::~ViewScene() = default;
+
+ViewState ViewScene::initialState(int width, int height) const {
+  ViewState s;
+  s.setCamera(home_);
+  s.opacityScale = job_.opacityScale;
+  s.dt = settings_.dt;
+  s.width = width;
+  s.height = height;
+  s.step = parseViewStep(job_.time);
+  return s;
+}
+
+void ViewScene::selectField(int index) {
+  fieldIndex_ = index;
+  field_.name = choices_.fields[size_t(index)];
+  const mesh::Field* f = share_.mesh.findField(field_.name);
+  field_.steps = uint64_t(std::max(coll_.max(double(f ? f->numSteps() : 0)), 1.0));
+  if (index == 0 && job_.range) {
+    field_.range = *job_.range;
+  } else {
+    // Over every step, so that colours mean the same while stepping through time.
+    std::vector<uint64_t> all(field_.steps);
+    for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
+    field_.range = app::globalRange(share_.mesh, field_.name, all, coll_);
+  }
+  settings_.transferFunction.lo = field_.range.first;
+  settings_.transferFunction.hi = field_.range.second;
+  step_ = -1;  // scalars of the new field are uploaded by applyState
+}
+
+void ViewScene::applyState(ViewState& state) {
+  if (state.field != fieldIndex_) selectField(state.field);
+  state.step = wrap(state.step, field_.steps);
+  if (state.step != step_) {
+    // A rank may hold fewer steps than another (or none): it shows its last one.
+    const mesh::Field* f = share_.mesh.findField(field_.name);
+    const uint64_t mine = f ? std::max<uint64_t>(f->numSteps(), 1) : 1;
+    gpu_->setScalars(app::fieldStep(share_.mesh, prepared_.rank, field_.name,
+                                    std::min<uint64_t>(uint64_t(state.step), mine - 1)));
+    step_ = state.step;
+  }
+  if (state.colormap != colormap_) {
+    const double lo = settings_.transferFunction.lo, hi = settings_.transferFunction.hi;
+    const double unit = settings_.transferFunction.unitDistance;
+    settings_.transferFunction =
+        scene::makeTransferFunction(choices_.colormaps[size_t(state.colormap)]);
+    settings_.transferFunction.lo = lo;
+    settings_.transferFunction.hi = hi;
+    settings_.transferFunction.unitDistance = unit;
+    colormap_ = state.colormap;
+  }
+  settings_.transferFunction.opacityScale = state.opacityScale;
+  settings_.dt = state.dt;
+  settings_.camera = state.camera();
+  if (!renderer_ || state.width != settings_.width || state.height != settings_.height) {
+    renderer_.reset();
+    compositor_.reset();
+    settings_.width = state.width;
+    settings_.height = state.height;
+    compositor_ = std::make_unique<comp::DeepCompositor>(*ctx_, coll_.communicator(), state.width,
+                                                         state.height, job_.lists);
+    renderer_ = std::make_unique<render::Renderer>(*ctx_, *gpu_, *compositor_);
+  }
+}
+
+render::FrameResult ViewScene::render(ViewState& state) {
+  applyState(state);
+  return renderer_->render(settings_);
+}
+
+}  // namespace sm::view

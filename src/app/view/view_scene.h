@@ -1,0 +1,75 @@
+// One rank's side of the viewer: its share of the data on the GPU, and the compositor and renderer
+// for the current image size. render() first makes the GPU side match the broadcast state: a new
+// time step or field uploads scalars only, a new size rebuilds compositor and renderer, a new
+// colour map, opacity or step only changes the frame's settings.
+//
+// Every rank calls render() with the same state, because a new field needs collectives (its
+// steps and range over all ranks) and compositing is collective.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "app/collectives.h"
+#include "app/rank_pipeline.h"
+#include "app/rank_share.h"
+#include "app/render_job.h"
+#include "app/view/view_state.h"
+#include "render/renderer.h"
+
+namespace sm::view {
+
+struct FieldInfo {
+  std::string name;
+  uint64_t steps = 1;                         // most steps on any rank
+  std::pair<double, double> range{0.0, 1.0};  // over all its steps, all ranks
+};
+
+class ViewScene {
+ public:
+  // Loads and prepares this rank's share and uploads it. `vo` are the Context options (rank 0
+  // adds what presentation needs).
+  ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo, app::Collectives& coll);
+  ~ViewScene();
+
+  const ViewChoices& choices() const { return choices_; }
+  // The state of the first frame (the job's camera, field, step, colour map, sampling).
+  ViewState initialState(int width, int height) const;
+  const scene::Camera& homeCamera() const { return home_; }
+
+  // Brings the GPU side in line with `state` (normalising its step into the field's steps) and
+  // renders; collective.
+  render::FrameResult render(ViewState& state);
+
+  const vk::Context& context() const { return *ctx_; }
+  const render::GpuScene& gpu() const { return *gpu_; }
+  const FieldInfo& field() const { return field_; }
+  const render::RenderSettings& settings() const { return settings_; }
+  double loadSeconds() const { return loadSeconds_; }
+  double prepareSeconds() const { return prepareSeconds_; }
+
+ private:
+  void selectField(int index);
+  void applyState(ViewState& state);
+
+  const app::RenderJob& job_;
+  app::Collectives& coll_;
+  app::RankShare share_;
+  app::PreparedShare prepared_;
+  ViewChoices choices_;
+  scene::Camera home_;
+  double loadSeconds_ = 0, prepareSeconds_ = 0;
+  std::unique_ptr<vk::Context> ctx_;
+  std::unique_ptr<render::GpuScene> gpu_;
+  std::unique_ptr<comp::DeepCompositor> compositor_;
+  std::unique_ptr<render::Renderer> renderer_;
+  render::RenderSettings settings_;
+  FieldInfo field_;
+  int fieldIndex_ = -1, step_ = -1, colormap_ = -1;
+};
+
+// The time step --time names: one index (the viewer shows one step at a time).
+int parseViewStep(const std::string& time);
+
+}  // namespace sm::view

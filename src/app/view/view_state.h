@@ -1,0 +1,46 @@
+// The viewer's state for one frame: everything a rank needs to render it. Rank 0 owns it (input
+// changes it there) and broadcasts it as plain bytes before every frame, so every rank renders the
+// same frame and a quit ends every rank at the same frame.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/camera.h"
+
+namespace sm::view {
+
+struct ViewState {
+  glm::dvec3 eye{0, 0, 1}, at{0, 0, 0}, up{0, 0, 1};
+  double fovyDeg = 30.0;
+  double opacityScale = 1.0;
+  double dt = 0.01;   // sample step along rays
+  int32_t width = 0;  // image size = the window's framebuffer size
+  int32_t height = 0;
+  int32_t step = 0;      // time step; ranks wrap it into the field's steps
+  int32_t field = 0;     // index into ViewChoices::fields
+  int32_t colormap = 0;  // index into ViewChoices::colormaps
+  uint32_t frame = 0;    // frames rendered before this one
+  uint32_t quit = 0;     // 1: no frame; every rank leaves the loop
+
+  scene::Camera camera() const { return {eye, at, up, fovyDeg}; }
+  void setCamera(const scene::Camera& c) {
+    eye = c.eye;
+    at = c.at;
+    up = c.up;
+    fovyDeg = c.fovyDeg;
+  }
+};
+static_assert(std::is_trivially_copyable_v<ViewState>, "broadcast as bytes");
+
+// What field and colour-map indices refer to; the same on every rank.
+struct ViewChoices {
+  std::vector<std::string> fields;
+  std::vector<std::string> colormaps;  // the job's --colormap first, then the other built-ins
+};
+
+}  // namespace sm::view

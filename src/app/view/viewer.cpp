@@ -1,0 +1,262 @@
+#include "app/view/viewer.h"
+
+#include <cstdio>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "app/render_setup.h"
+#include "app/view/input.h"
+#include "app/view/presenter.h"
+#include "app/view/script.h"
+#include "app/view/view_scene.h"
+#include "app/view/window.h"
+#include "common/error.h"
+#include "common/file_util.h"
+#include "common/log.h"
+#include "common/timer.h"
+#include "scene/image.h"
+
+namespace sm::view {
+namespace {
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string vec(const glm::dvec3& v) {
+  return fmt("%.17g", v.x) + "," + fmt("%.17g", v.y) + "," + fmt("%.17g", v.z);
+}
+
+// FILE.png -> FILE_0012.png (frame 12), for the screenshot key.
+std::string numberedPath(const std::string& base, uint32_t frame) {
+  std::string stem = base.empty() ? "shellmarch-view.png" : base, ext = ".png";
+  if (auto dot = stem.rfind('.');
+      dot != std::string::npos && stem.find('/', dot) == std::string::npos) {
+    ext = stem.substr(dot);
+    stem.resize(dot);
+  }
+  char num[16];
+  std::snprintf(num, sizeof num, "_%04u", frame);
+  return stem + num + ext;
+}
+
+class Viewer {
+ public:
+  Viewer(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll);
+  void run();
+
+ private:
+  bool root() const { return coll_.rank() == 0; }
+  void gatherInput();
+  void applyEvents(std::vector<InputEvent>& events);
+  void show(render::FrameResult& frame, uint64_t fragments);
+  std::vector<std::string> overlayLines() const;
+  void writeScreenshots();
+  void finish();
+  // --print-camera: the final camera and settings, and the render arguments that reproduce them.
+  nlohmann::json report(uint64_t errors) const;
+
+  const app::RenderJob& job_;
+  const ViewOptions& options_;
+  app::Collectives& coll_;
+  Script script_;
+  std::unique_ptr<Window> window_;  // rank 0 only, as are presenter_ and input_
+  std::unique_ptr<ViewScene> scene_;
+  std::unique_ptr<Presenter> presenter_;
+  std::unique_ptr<InputHandler> input_;
+  ViewState state_;
+  LocalRequests local_;
+  std::vector<glm::vec4> lastPixels_;
+  int lastWidth_ = 0, lastHeight_ = 0;
+  uint32_t framesShown_ = 0;
+  double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
+  bool overlay_ = true;
+};
+
+Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll)
+    : job_(job), options_(options), coll_(coll), overlay_(options.overlay) {
+  if (options.frames < 0) throw Error("--frames: ", options.frames, " is negative");
+  if (options.headless && options.frames == 0 && options.script.empty())
+    throw Error("--headless needs --frames or --script (there is no window to take input from)");
+  vk::ContextOptions vo = app::contextOptions(job);
+  if (root()) {
+    // Input and window problems show before minutes of loading.
+    if (!options.script.empty()) script_ = Script::load(options.script);
+    window_ = std::make_unique<Window>(job.width, job.height, "shellmarch view - " + job.mesh,
+                                       options.headless);
+    vo.instanceExtensions = window_->instanceExtensions();
+    vo.swapchain = true;
+  }
+  scene_ = std::make_unique<ViewScene>(job, vo, coll);
+  if (root()) {
+    presenter_ = std::make_unique<Presenter>(*window_, scene_->context(), job.background);
+    input_ = std::make_unique<InputHandler>(scene_->homeCamera(), scene_->choices());
+  }
+  state_ = scene_->initialState(job.width, job.height);
+  log::info("view: loaded in ", scene_->loadSeconds(), " s, prepared in ", scene_->prepareSeconds(),
+            " s");
+}
+
+void Viewer::run() {
+  for (;;) {
+    Timer frameTimer;
+    if (root()) gatherInput();
+    coll_.broadcast(&state_, sizeof state_);
+    if (state_.quit) break;
+    render::FrameResult frame = scene_->render(state_);
+    const uint64_t fragments = coll_.sum(uint64_t(frame.fragments));
+    if (root()) {
+      renderMs_ = frame.timings.totalMs;
+      show(frame, fragments);
+    }
+    ++state_.frame;
+    frameMs_ = frameTimer.ms();
+  }
+  finish();
+}
+
+void Viewer::gatherInput() {
+  std::vector<InputEvent> events;
+  window_->poll(events);
+  const bool scripted = script_.nextFrame(events);
+  applyEvents(events);
+  // Nothing to draw into while minimised: wait for the window to come back.
+  auto [w, h] = window_->framebufferSize();
+  while ((w <= 0 || h <= 0) && !state_.quit && !window_->closeRequested()) {
+    window_->wait(0.1);
+    window_->poll(events);
+    applyEvents(events);
+    std::tie(w, h) = window_->framebufferSize();
+  }
+  state_.width = std::min(w, 16384);
+  state_.height = std::min(h, 16384);
+  if (window_->closeRequested()) state_.quit = 1;
+  if (options_.frames > 0 && state_.frame >= uint32_t(options_.frames)) state_.quit = 1;
+  // Headless, a finished script is the end (there is no other input).
+  if (!scripted && window_->headless() && options_.frames == 0) state_.quit = 1;
+}
+
+void Viewer::applyEvents(std::vector<InputEvent>& events) {
+  for (const InputEvent& e : events) input_->apply(e, state_, local_);
+  events.clear();
+  if (local_.resizeWidth > 0) window_->requestSize(local_.resizeWidth, local_.resizeHeight);
+  if (local_.toggleOverlay) overlay_ = !overlay_;
+  if (local_.help) std::fputs(controlsHelp().c_str(), stderr);
+  local_.resizeWidth = local_.resizeHeight = 0;
+  local_.toggleOverlay = local_.help = false;
+}
+
+void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
+  lastPixels_ = std::move(frame.pixels);
+  lastWidth_ = state_.width;
+  lastHeight_ = state_.height;
+  uint64_t covered = 0;
+  for (const glm::vec4& p : lastPixels_) covered += p.a > 0.0f;
+  fragmentsPerPixel_ = covered ? double(fragments) / double(covered) : 0.0;
+  presenter_->show(lastPixels_, lastWidth_, lastHeight_,
+                   overlay_ ? overlayLines() : std::vector<std::string>{});
+  ++framesShown_;
+  window_->setTitle("shellmarch view | " + job_.mesh + " | " + scene_->field().name + " step " +
+                    std::to_string(state_.step) + " | " +
+                    fmt("%.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) + " | " +
+                    fmt("%.2f fragments/pixel", fragmentsPerPixel_));
+  writeScreenshots();
+}
+
+// Frame time is the previous frame's, input to present: this one is not presented yet. Fragments
+// per pixel count every rank's fragments over the pixels the composited image covers.
+std::vector<std::string> Viewer::overlayLines() const {
+  const FieldInfo& f = scene_->field();
+  std::vector<std::string> lines;
+  lines.push_back(fmt("FRAME %.1f MS", frameMs_ > 0 ? frameMs_ : renderMs_) +
+                  fmt(" (RENDER %.1f MS)", renderMs_));
+  lines.push_back(fmt("%.2f FRAGMENTS/PIXEL", fragmentsPerPixel_));
+  lines.push_back(f.name + " STEP " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
+                  "  " + scene_->choices().colormaps[size_t(state_.colormap)]);
+  lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
+  return lines;
+}
+
+void Viewer::writeScreenshots() {
+  if (lastPixels_.empty() || local_.screenshots.empty()) return;
+  scene::Image img(lastWidth_, lastHeight_);
+  img.pixels = lastPixels_;
+  for (const std::string& requested : local_.screenshots) {
+    const std::string path =
+        requested.empty() ? numberedPath(options_.screenshot, state_.frame) : requested;
+    scene::writePng(path, img, job_.background);  // atomic: a viewer of the file never sees half
+    log::info("view: screenshot ", path);
+  }
+  local_.screenshots.clear();
+}
+
+nlohmann::json Viewer::report(uint64_t errors) const {
+  const FieldInfo& f = scene_->field();
+  const scene::Camera& home = scene_->homeCamera();
+  const auto& tf = scene_->settings().transferFunction;
+  const std::string colormap = scene_->choices().colormaps[size_t(state_.colormap)];
+  nlohmann::json j;
+  j["frames"] = framesShown_;
+  j["ranks"] = coll_.size();
+  j["size"] = {lastWidth_, lastHeight_};
+  j["eye"] = {state_.eye.x, state_.eye.y, state_.eye.z};
+  j["at"] = {state_.at.x, state_.at.y, state_.at.z};
+  j["up"] = {state_.up.x, state_.up.y, state_.up.z};
+  j["fovy"] = state_.fovyDeg;
+  j["field"] = f.name;
+  j["time"] = state_.step;
+  j["colormap"] = colormap;
+  j["range"] = {f.range.first, f.range.second};
+  j["opacity_scale"] = state_.opacityScale;
+  j["step"] = state_.dt;
+  j["unit_distance"] = tf.unitDistance;
+  j["fragments_per_pixel"] = fragmentsPerPixel_;
+  j["presented"] = presenter_->presented();
+  j["swapchain_rebuilds"] = presenter_->swapchainRebuilds();
+  j["validation_errors"] = errors;
+  j["home"] = {{"eye", {home.eye.x, home.eye.y, home.eye.z}},
+               {"at", {home.at.x, home.at.y, home.at.z}}};
+  j["geometry_builds"] = scene_->gpu().geometryBuilds();
+  j["scalar_uploads"] = scene_->gpu().scalarUploads();
+  // What `shellmarch render` needs, besides the data options given to view, for this frame.
+  j["render_args"] = {"--size=" + std::to_string(lastWidth_) + "x" + std::to_string(lastHeight_),
+                      "--eye=" + vec(state_.eye),
+                      "--at=" + vec(state_.at),
+                      "--up=" + vec(state_.up),
+                      "--fovy=" + fmt("%.17g", state_.fovyDeg),
+                      "--field=" + f.name,
+                      "--time=" + std::to_string(state_.step),
+                      "--colormap=" + colormap,
+                      "--range=" + fmt("%.17g", f.range.first) + "," + fmt("%.17g", f.range.second),
+                      "--opacity-scale=" + fmt("%.17g", state_.opacityScale),
+                      "--step=" + fmt("%.17g", state_.dt),
+                      "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
+  return j;
+}
+
+void Viewer::finish() {
+  if (root()) {
+    if (!options_.screenshot.empty()) local_.screenshots.push_back(options_.screenshot);
+    if (lastPixels_.empty() && !local_.screenshots.empty())
+      log::warning("view: no frame was rendered, so no screenshot was written");
+    writeScreenshots();
+  }
+  const uint64_t errors = coll_.sum(scene_->context().validationErrors());
+  if (root() && options_.printCamera) {
+    std::printf("%s\n", report(errors).dump().c_str());
+    std::fflush(stdout);
+  }
+  if (errors) throw Error("the Vulkan validation layer reported ", errors, " error(s)");
+}
+
+}  // namespace
+
+void runView(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll) {
+  Viewer viewer(job, options, coll);
+  viewer.run();
+}
+
+}  // namespace sm::view

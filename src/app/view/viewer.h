@@ -1,0 +1,23 @@
+// `shellmarch view`: the interactive viewer. Every rank renders every frame; rank 0 owns the
+// window, reads input (window and --script), and broadcasts the frame's state before rendering.
+#pragma once
+
+#include <string>
+
+#include "app/collectives.h"
+#include "app/render_job.h"
+
+namespace sm::view {
+
+struct ViewOptions {
+  int frames = 0;            // > 0: render this many frames, then exit
+  std::string script;        // input to replay (see script.h)
+  std::string screenshot;    // the last frame goes here at exit; also names the s key's PNGs
+  bool printCamera = false;  // one JSON line on stdout at exit: camera, settings, render args
+  bool headless = false;     // no window: VK_EXT_headless_surface, input from --script only
+  bool overlay = true;
+};
+
+void runView(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll);
+
+}  // namespace sm::view

@@ -1,0 +1,74 @@
+#include "mesh_input.h"
+
+#include <array>
+#include <cstdint>
+
+#include "common/error.h"
+#include "mesh/mesh_builder.h"
+
+namespace sm::insitu {
+namespace {
+
+using shellmarch::insitu::IndexSpan;
+using shellmarch::insitu::MeshView;
+
+struct TypedIds {
+  mesh::CellType type;
+  const char* member;  // the MeshView member, for messages
+  const IndexSpan& ids;
+};
+
+std::array<TypedIds, 4> typedIds(const MeshView& v) {
+  return {{{mesh::CellType::Tet, "tetrahedra", v.tetrahedra},
+           {mesh::CellType::Pyramid, "pyramids", v.pyramids},
+           {mesh::CellType::Wedge, "wedges", v.wedges},
+           {mesh::CellType::Hex, "hexahedra", v.hexahedra}}};
+}
+
+std::vector<glm::dvec3> copyPoints(std::span<const double> xyz) {
+  if (xyz.size() % 3 != 0)
+    throw Error("setMesh: points holds ", xyz.size(),
+                " values, not a multiple of 3 (x, y, z per vertex)");
+  std::vector<glm::dvec3> points(xyz.size() / 3);
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] = glm::dvec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  return points;
+}
+
+// Sizes and id ranges of one type, before any cell is built: MeshBuilder's own messages speak of
+// files, these speak of the arrays the caller passed.
+void checkIds(const TypedIds& t, uint64_t numPoints) {
+  const uint32_t nv = mesh::numVerts(t.type);
+  if (t.ids.size() % nv != 0)
+    throw Error("setMesh: ", t.member, " holds ", t.ids.size(), " ids, not a multiple of ", nv,
+                " (ids per ", mesh::cellTypeName(t.type), ")");
+  for (size_t i = 0; i < t.ids.size(); ++i) {
+    const int64_t id = t.ids[i];
+    if (id < 0 || uint64_t(id) >= numPoints)
+      throw Error("setMesh: ", mesh::cellTypeName(t.type), " ", i / nv, " (", t.member, "[", i,
+                  "]) refers to vertex ", id, ", but points gives ", numPoints,
+                  " vertices (ids are 0-based)");
+  }
+}
+
+}  // namespace
+
+mesh::UnstructuredMesh meshFromView(const MeshView& view) {
+  // The builder's messages start with its source name; here that is the API call.
+  mesh::MeshBuilder builder("setMesh");
+  builder.setPoints(copyPoints(view.points));
+  for (const TypedIds& t : typedIds(view)) {
+    checkIds(t, builder.numPoints());
+    const uint32_t nv = mesh::numVerts(t.type);
+    const uint64_t count = t.ids.size() / nv;
+    builder.reserveCells(t.type, count);
+    int64_t ids[8];
+    for (uint64_t e = 0; e < count; ++e) {
+      for (uint32_t k = 0; k < nv; ++k) ids[k] = t.ids[e * nv + k];
+      builder.addCell(t.type, std::span<const int64_t>(ids, nv), e);
+    }
+  }
+  return builder.finish();
+}
+
+}  // namespace sm::insitu

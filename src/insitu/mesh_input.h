@@ -1,0 +1,14 @@
+// From the caller's arrays to the renderer's own mesh: checks what a simulation can get wrong
+// (sizes, ids, coordinates) with messages in the API's terms, then hands the cells to
+// mesh::MeshBuilder, the one place where cells enter a mesh (orientation, repeated vertices).
+#pragma once
+
+#include "mesh/unstructured_mesh.h"
+#include "shellmarch/insitu.h"
+
+namespace sm::insitu {
+
+// This rank's mesh as a copy; throws sm::Error on bad input.
+mesh::UnstructuredMesh meshFromView(const shellmarch::insitu::MeshView& view);
+
+}  // namespace sm::insitu

@@ -1,0 +1,236 @@
+// The public classes of shellmarch/insitu.h: Renderer, a facade over prep, render and the
+// compositor, and Image.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+#include "common/error.h"
+#include "common/timer.h"
+#include "field_store.h"
+#include "frame_settings.h"
+#include "group.h"
+#include "mesh_input.h"
+#include "prep/prepare.h"
+#include "render/frame_defaults.h"
+#include "render/renderer.h"
+#include "scene/image.h"
+#include "shellmarch/insitu.h"
+#include "vk/context.h"
+
+namespace shellmarch::insitu {
+
+using sm::insitu::FieldStore;
+using sm::insitu::Group;
+using sm::insitu::MeshFrame;
+
+// Hidden: the implementation is no part of the library's interface (the class around it is).
+struct __attribute__((visibility("hidden"))) Renderer::Impl {
+  Impl(Group&& g, const Options& options) : group(std::move(g)) {
+    group.agree([&] {
+      sm::vk::ContextOptions o;
+      o.device = options.device;
+      o.validation = options.validation;
+      ctx = std::make_unique<sm::vk::Context>(o);
+    });
+  }
+
+  void setMesh(const MeshView& view);
+  Image render(const RenderSettings& settings);
+  MeshFrame agreeOnFrame(const sm::mesh::UnstructuredMesh& m);
+  void upload(sm::mesh::UnstructuredMesh& m);
+  void ensureRenderer(int width, int height);
+  void releaseMesh();
+
+  // Declaration order is destruction order reversed: the renderer goes before what it uses.
+  Group group;
+  std::unique_ptr<sm::vk::Context> ctx;
+  std::unique_ptr<sm::render::GpuScene> scene;
+  std::unique_ptr<sm::comp::DeepCompositor> compositor;
+  std::unique_ptr<sm::render::Renderer> renderer;
+  FieldStore fields;
+  MeshFrame frame;
+  uint64_t localElements = 0;
+  uint64_t retiredBuilds = 0, retiredUploads = 0;  // of scenes replaced by a later setMesh
+  double prepareSeconds = 0, frameMs = 0;
+};
+
+void Renderer::Impl::releaseMesh() {
+  renderer.reset();
+  compositor.reset();
+  if (scene) {
+    retiredBuilds += scene->geometryBuilds();
+    retiredUploads += scene->scalarUploads();
+  }
+  scene.reset();
+  fields = FieldStore();
+}
+
+MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const sm::mesh::Bounds local = m.bounds();
+  MeshFrame f;
+  for (int a = 0; a < 3; ++a) {
+    f.whole.lo[a] = group.min(local.empty ? inf : local.lo[a]);
+    f.whole.hi[a] = group.max(local.empty ? -inf : local.hi[a]);
+  }
+  f.whole.empty = !(f.whole.lo.x <= f.whole.hi.x);
+  const sm::render::ElementSizeSum sizes = sm::render::elementSizeSum(m);
+  f.elements = group.sum(sizes.count);
+  f.meanElementSize = f.elements ? group.sum(sizes.sum) / double(f.elements) : 0.0;
+  return f;
+}
+
+void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m) {
+  const uint64_t inputVertices = m.numPoints();  // preparation takes the points out of m
+  sm::prep::PreparedRank prepared =
+      sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
+          .rank;
+  scene = std::make_unique<sm::render::GpuScene>(*ctx, prepared);
+  localElements = prepared.numElements();
+  // The device holds the geometry now; the host keeps only the vertex map for the fields.
+  sm::prep::PreparedRank vertexMap;
+  vertexMap.vertexSource = std::move(prepared.vertexSource);
+  fields = FieldStore(std::move(vertexMap), inputVertices);
+}
+
+void Renderer::Impl::setMesh(const MeshView& view) {
+  releaseMesh();
+  sm::Timer timer;
+  sm::mesh::UnstructuredMesh m;
+  group.agree([&] { m = sm::insitu::meshFromView(view); });
+  frame = agreeOnFrame(m);
+  if (frame.elements == 0)
+    throw Error("setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
+  group.agree([&] { upload(m); });
+  prepareSeconds = timer.seconds();
+}
+
+void Renderer::Impl::ensureRenderer(int width, int height) {
+  if (compositor && compositor->width() == width && compositor->height() == height) return;
+  renderer.reset();
+  compositor = std::make_unique<sm::comp::DeepCompositor>(*ctx, group.compositorComm(), width,
+                                                          height, sm::comp::CompositorOptions{});
+  renderer = std::make_unique<sm::render::Renderer>(*ctx, *scene, *compositor);
+}
+
+Image Renderer::Impl::render(const RenderSettings& s) {
+  sm::Timer timer;
+  sm::render::RenderSettings rs;
+  sm::insitu::FieldRange range;
+  group.agree([&] {
+    if (!scene) throw Error("render: no mesh (setMesh was not called or failed)");
+    rs = sm::insitu::toRenderSettings(s, frame);
+    range = fields.prepare(s.field, *scene);
+    ensureRenderer(s.width, s.height);
+  });
+  if (!group.same(sm::insitu::settingsDigest(s)))
+    throw Error("render: the settings differ between ranks; every rank must pass the same");
+  double lo = s.range ? (*s.range)[0] : group.min(range.lo);
+  double hi = s.range ? (*s.range)[1] : group.max(range.hi);
+  if (!(lo <= hi)) lo = 0, hi = 1;  // no finite value anywhere: any range renders transparent
+  rs.transferFunction.lo = lo;
+  rs.transferFunction.hi = hi;
+  sm::render::FrameResult result;
+  group.runOrAbort([&] { result = renderer->render(rs); });
+  frameMs = timer.seconds() * 1e3;
+  Image img;
+  if (group.rank() != 0) return img;
+  img.width = s.width;
+  img.height = s.height;
+  img.rgba.resize(result.pixels.size() * 4);
+  std::memcpy(img.rgba.data(), result.pixels.data(), img.rgba.size() * sizeof(float));
+  return img;
+}
+
+namespace {
+
+// Every exception leaves the library as Error (internal types are not part of the API).
+template <typename F>
+auto translated(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(e.what());
+  }
+}
+
+}  // namespace
+
+Renderer::Renderer(MPI_Comm comm, const Options& options)
+    : impl_(translated([&] { return std::make_unique<Impl>(Group(comm), options); })) {}
+
+Renderer::Renderer(const Options& options)
+    : impl_(translated([&] { return std::make_unique<Impl>(Group(), options); })) {}
+
+Renderer::~Renderer() = default;
+
+int Renderer::rank() const {
+  return impl_->group.rank();
+}
+
+int Renderer::ranks() const {
+  return impl_->group.size();
+}
+
+void Renderer::setMesh(const MeshView& mesh) {
+  translated([&] { impl_->setMesh(mesh); });
+}
+
+void Renderer::setField(const std::string& name, std::span<const float> values) {
+  translated([&] { impl_->fields.set(name, values); });
+}
+
+Image Renderer::render(const RenderSettings& settings) {
+  return translated([&] { return impl_->render(settings); });
+}
+
+Stats Renderer::stats() const {
+  const Impl& d = *impl_;
+  Stats s;
+  s.deviceName = d.ctx->deviceName();
+  s.geometryBuilds = d.retiredBuilds;
+  s.scalarUploads = d.retiredUploads;
+  if (d.scene) {
+    s.vertices = d.scene->numVertices();
+    s.shellTriangles = d.scene->shellTriangles();
+    s.elements = d.localElements;
+    s.geometryBuilds += d.scene->geometryBuilds();
+    s.scalarUploads += d.scene->scalarUploads();
+  }
+  s.validationErrors = d.ctx->validationErrors();
+  s.validationWarnings = d.ctx->validationWarnings();
+  s.prepareSeconds = d.prepareSeconds;
+  s.frameMs = d.frameMs;
+  return s;
+}
+
+namespace {
+
+uint8_t toByte(float v) {
+  if (!std::isfinite(v)) return 0;
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+std::vector<uint8_t> Image::toRgba8() const {
+  std::vector<uint8_t> out(rgba.size());
+  for (size_t i = 0; i < rgba.size(); ++i) out[i] = toByte(rgba[i]);
+  return out;
+}
+
+void Image::writePng(const std::string& path, std::array<float, 3> background) const {
+  if (empty()) throw Error(path + ": no image to write (images exist on rank 0 only)");
+  sm::scene::Image img(width, height);
+  for (size_t i = 0; i < img.pixels.size(); ++i)
+    img.pixels[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], rgba[4 * i + 3]);
+  translated([&] {
+    sm::scene::writePng(path, img, glm::vec3(background[0], background[1], background[2]));
+  });
+}
+
+}  // namespace shellmarch::insitu

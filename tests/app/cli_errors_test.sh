@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Bad input gets one clear line naming the file or option, a non-zero exit, and no output file.
+set -uo pipefail
+sm=$1 work=$2
+mkdir -p "$work" && cd "$work"
+"$sm" generate --analytic cube-tets6 --cube-n 2 --out ok.pvtu >/dev/null
+fails=0
+expect() {  # expect "what the message must contain" command...
+  local want=$1; shift
+  local out rc
+  out=$("$@" 2>&1); rc=$?
+  local lines; lines=$(printf '%s\n' "$out" | grep -c 'error')
+  if [ $rc -eq 0 ] || ! grep -qF -- "$want" <<<"$out" || [ "$lines" -ne 1 ]; then
+    echo "FAIL: '$*' exit $rc, wanted one error line with '$want', got:"; printf '%s\n' "$out"; fails=$((fails + 1))
+  else
+    echo "ok: $(grep error <<<"$out")"
+  fi
+}
+expect "missing.vtu" "$sm" render missing.vtu --out a.png
+expect "--size" "$sm" render ok.pvtu --size 0x10 --out a.png
+expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
+expect "--field" "$sm" render ok.pvtu --field nope --out a.png
+expect "--out" "$sm" render ok.pvtu --out a.jpg
+expect "--step" "$sm" render ok.pvtu --step -1 --out a.png
+expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
+expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
+expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png
+expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
+expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png
+expect "--shading-params" "$sm" render ok.pvtu --shading-params 0.3,0.7,-1,20 --out a.png
+printf 'not a mesh' > garbage.vtu
+expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
+if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi
+exit $fails

@@ -1,0 +1,171 @@
+// Bad input through the in-situ API: every mistake a simulation can make with its arrays or
+// settings is an Error whose message names the array, element and value at fault, and the
+// renderer stays usable afterwards.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "renderer_suite.h"
+#include "shellmarch/insitu.h"
+#include "sim_mesh.h"
+#include "support/test_meshes.h"
+
+namespace sm::insitu::test {
+namespace {
+
+namespace api = shellmarch::insitu;
+
+// Runs fn, expecting an api::Error whose message contains `part`.
+template <typename F>
+void expectError(F&& fn, const std::string& part) {
+  try {
+    fn();
+    ADD_FAILURE() << "no error; expected one containing: " << part;
+  } catch (const api::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+        << "message: " << e.what() << "\nexpected it to contain: " << part;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not an api::Error: " << e.what();
+  }
+}
+
+// Two tetrahedra sharing a face, as plain arrays.
+const std::vector<double> kPoints = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+const std::vector<int32_t> kTets = {0, 1, 2, 3, 1, 2, 3, 4};
+
+api::MeshView twoTets(std::span<const double> points, std::span<const int32_t> tets) {
+  api::MeshView v;
+  v.points = points;
+  v.tetrahedra = tets;
+  return v;
+}
+
+api::RenderSettings small() {
+  api::RenderSettings s;
+  s.width = s.height = 8;
+  return s;
+}
+
+using InsituErrors = RendererSuite;
+
+TEST_F(InsituErrors, MeshArrays) {
+  api::Renderer& r = *vis_;
+  std::vector<double> p = kPoints;
+  p.pop_back();
+  expectError([&] { r.setMesh(twoTets(p, kTets)); },
+              "setMesh: points holds 14 values, not a multiple of 3");
+  std::vector<int32_t> t = kTets;
+  t[6] = 9;
+  expectError([&] { r.setMesh(twoTets(kPoints, t)); },
+              "setMesh: tetrahedron 1 (tetrahedra[6]) refers to vertex 9, but points gives 5");
+  t[6] = -1;
+  expectError([&] { r.setMesh(twoTets(kPoints, t)); }, "refers to vertex -1");
+  t = kTets;
+  t.push_back(0);
+  expectError([&] { r.setMesh(twoTets(kPoints, t)); },
+              "setMesh: tetrahedra holds 9 ids, not a multiple of 4");
+  t = kTets;
+  t[5] = 1;
+  expectError([&] { r.setMesh(twoTets(kPoints, t)); }, "uses the same point twice");
+  const std::vector<uint64_t> huge = {0, 1, 2, std::numeric_limits<uint64_t>::max()};
+  api::MeshView v = twoTets(kPoints, {});
+  v.tetrahedra = huge;
+  expectError([&] { r.setMesh(v); }, "refers to vertex -1");
+  api::MeshView pyramids = twoTets(kPoints, {});
+  pyramids.pyramids = kTets;  // 8 ids: not whole pyramids
+  expectError([&] { r.setMesh(pyramids); }, "pyramids holds 8 ids, not a multiple of 5");
+}
+
+TEST_F(InsituErrors, NonFinitePositions) {
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    std::vector<double> p = kPoints;
+    p[7] = bad;
+    expectError([&] { vis_->setMesh(twoTets(p, kTets)); },
+                "setMesh: point 2 has a non-finite coordinate");
+  }
+}
+
+TEST_F(InsituErrors, NoElements) {
+  expectError([&] { vis_->setMesh(twoTets(kPoints, {})); },
+              "setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
+}
+
+// A failed setMesh leaves the renderer without a mesh (whatever an earlier test left).
+void dropMesh(api::Renderer& r) {
+  EXPECT_THROW(r.setMesh(twoTets(kPoints, {})), api::Error);
+}
+
+TEST_F(InsituErrors, Fields) {
+  dropMesh(*vis_);
+  expectError([&] { vis_->setField("t", std::vector<float>(5)); },
+              "setField: no mesh (call setMesh first)");
+  vis_->setMesh(twoTets(kPoints, kTets));
+  expectError([&] { vis_->setField("t", std::vector<float>(4)); },
+              "setField: field 't' has 4 values, but setMesh gave 5 vertices");
+  expectError([&] { vis_->setField("", std::vector<float>(5)); }, "the field needs a name");
+  expectError([&] { vis_->render(small()); }, "render: no field on this rank");
+  vis_->setField("t", std::vector<float>(5, 1.0f));
+  api::RenderSettings s = small();
+  s.field = "pressure";
+  expectError([&] { vis_->render(s); }, "render: no field 'pressure' on this rank (set: 't')");
+}
+
+TEST_F(InsituErrors, Settings) {
+  dropMesh(*vis_);
+  expectError([&] { vis_->render(small()); }, "render: no mesh");
+  vis_->setMesh(twoTets(kPoints, kTets));
+  vis_->setField("t", std::vector<float>{0, 1, 2, 3, 4});
+  auto expectSettingError = [&](auto change, const std::string& part) {
+    api::RenderSettings s = small();
+    change(s);
+    expectError([&] { vis_->render(s); }, part);
+  };
+  expectSettingError([](auto& s) { s.width = 0; }, "render: image size 0x8");
+  expectSettingError([](auto& s) { s.view = "diagonal"; }, "render: view 'diagonal'");
+  expectSettingError(
+      [](auto& s) {
+        s.camera = api::Camera{{1, 1, 1}, {1, 1, 1}};
+      },
+      "camera eye and at are the same point");
+  expectSettingError(
+      [](auto& s) {
+        s.camera = api::Camera{{0, 0, 5}, {0, 0, 0}, {0, 0, 1}};
+      },
+      "camera up is zero or parallel");
+  expectSettingError(
+      [](auto& s) {
+        s.range = std::array<double, 2>{2, 1};
+      },
+      "render: range [2, 1] must be finite with lo <= hi");
+  expectSettingError(
+      [](auto& s) {
+        s.table = {{0, 0, 0, 2}, {0, 0, 0, 0}};
+      },
+      "table entries must be in [0, 1], not 2");
+  expectSettingError([](auto& s) { s.colormap = "no-such-map"; },
+                     "render: colormap: unknown colour map 'no-such-map' (built-in: ");
+  expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); }, "must be finite");
+}
+
+// After any of these errors the renderer renders as if they had not happened.
+TEST_F(InsituErrors, UsableAfterErrors) {
+  std::vector<int32_t> bad = kTets;
+  bad[0] = 99;
+  EXPECT_THROW(vis_->setMesh(twoTets(kPoints, bad)), api::Error);
+  SimMesh sim = simMesh(sm::test::hexGrid(2));
+  const uint64_t builds = vis_->stats().geometryBuilds;
+  vis_->setMesh(sim.view());
+  EXPECT_THROW(vis_->setField("t", std::vector<float>(3)), api::Error);
+  vis_->setField("t", std::vector<float>(sim.vertices(), 1.0f));
+  api::RenderSettings s = small();
+  s.width = 0;
+  EXPECT_THROW(vis_->render(s), api::Error);
+  api::Image img = vis_->render(small());
+  ASSERT_EQ(img.width, 8);
+  EXPECT_GT(img.rgba[(4 * 8 + 4) * 4 + 3], 0.1f);  // the default view frames the mesh
+  EXPECT_EQ(vis_->stats().geometryBuilds - builds, 1u);
+}
+
+}  // namespace
+}  // namespace sm::insitu::test

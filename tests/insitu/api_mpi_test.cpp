@@ -1,0 +1,141 @@
+// The in-situ API across MPI ranks: a partitioned mesh renders as the whole mesh does in one
+// process (the global frame is agreed, so shared faces match), and an error on one rank is an
+// error on every rank instead of a hang.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+
+#include "shellmarch/insitu.h"
+#include "sim_mesh.h"
+#include "support/test_meshes.h"
+
+namespace sm::insitu::test {
+namespace {
+
+namespace api = shellmarch::insitu;
+
+int worldRank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int worldSize() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+float field(glm::dvec3 p) {
+  return float(std::sin(3 * p.x) + p.y * p.z);
+}
+
+api::RenderSettings settings() {
+  api::RenderSettings s;
+  s.width = 40;
+  s.height = 32;
+  s.view = "iso";
+  s.colormap = "cool-to-warm";
+  s.earlyTermination = 2.0;  // off, or a rank behind an opaque one would still add its share
+  return s;                  // camera, range, step and unit distance: the defaults
+}
+
+// Slab r of the unit cube along x, as rank r of n holds it. The pyramid grid's quads lie on the
+// slab boundaries, so ranks must split them identically.
+SimMesh share(const mesh::UnstructuredMesh& whole, int r, int n) {
+  const double lo = r == 0 ? -1.0 : double(r) / n, hi = r == n - 1 ? 2.0 : double(r + 1) / n;
+  return slab(whole, lo, hi);
+}
+
+// Renders this rank's share through the world communicator and, on rank 0, the whole mesh in one
+// process without MPI; expects the two images to agree up to float rounding.
+void expectPartsMatchWhole(const mesh::UnstructuredMesh& whole, const SimMesh& mine) {
+  api::Renderer vis(MPI_COMM_WORLD);
+  EXPECT_EQ(vis.ranks(), worldSize());
+  vis.setMesh(mine.view());
+  vis.setField("f", mine.field(field));  // ranges differ per rank: the default range is global
+  api::Image parts = vis.render(settings());
+  EXPECT_EQ(vis.stats().validationErrors, 0u);
+  if (worldRank() != 0) {
+    EXPECT_TRUE(parts.empty());
+    return;
+  }
+  api::Renderer alone;  // no communicator: this process only
+  SimMesh all = simMesh(whole);
+  alone.setMesh(all.view());
+  alone.setField("f", all.field(field));
+  api::Image one = alone.render(settings());
+  ASSERT_EQ(one.rgba.size(), parts.rgba.size());
+  double maxErr = 0, maxAlpha = 0;
+  for (size_t i = 0; i < one.rgba.size(); ++i) {
+    maxErr = std::max(maxErr, double(std::abs(one.rgba[i] - parts.rgba[i])));
+    if (i % 4 == 3) maxAlpha = std::max(maxAlpha, double(one.rgba[i]));
+  }
+  std::printf("[insitu] %d ranks vs one process: max abs difference %.3g\n", worldSize(), maxErr);
+  EXPECT_GT(maxAlpha, 0.3);
+  // The same samples composited in another grouping: float rounding only.
+  EXPECT_LT(maxErr, 1e-5);
+  EXPECT_EQ(alone.stats().validationErrors, 0u);
+}
+
+TEST(InsituMpi, PartitionMatchesOneProcess) {
+  const mesh::UnstructuredMesh whole = sm::test::pyramidGrid(6);
+  SimMesh mine = share(whole, worldRank(), worldSize());
+  ASSERT_FALSE(mine.cells[1].empty());
+  expectPartsMatchWhole(whole, mine);
+}
+
+// The last rank holds nothing (no vertices, no elements, no field) and still takes part.
+TEST(InsituMpi, RankWithoutElementsTakesPart) {
+  if (worldSize() < 2) GTEST_SKIP() << "needs two ranks or more";
+  const mesh::UnstructuredMesh whole = sm::test::kuhnTetGrid(4);
+  const int holders = worldSize() - 1;
+  SimMesh mine = worldRank() < holders ? share(whole, worldRank(), holders) : SimMesh{};
+  expectPartsMatchWhole(whole, mine);
+}
+
+TEST(InsituMpi, ErrorOnOneRankThrowsOnEveryRank) {
+  const int last = worldSize() - 1;
+  const mesh::UnstructuredMesh whole = sm::test::hexGrid(3);
+  api::Renderer vis(MPI_COMM_WORLD);
+  SimMesh mine = share(whole, worldRank(), worldSize());
+  if (worldRank() == last) mine.cells[3][5] = 1000;  // one bad id on one rank
+  try {
+    vis.setMesh(mine.view());
+    ADD_FAILURE() << "setMesh did not throw";
+  } catch (const api::Error& e) {
+    const std::string expect = worldSize() > 1 ? "rank " + std::to_string(last) + ": " : "";
+    EXPECT_NE(std::string(e.what()).find(expect + "setMesh: hexahedron 0 (hexahedra[5]) refers "
+                                                  "to vertex 1000"),
+              std::string::npos)
+        << e.what();
+  }
+  // Every rank is still in step: the corrected mesh renders.
+  mine = share(whole, worldRank(), worldSize());
+  vis.setMesh(mine.view());
+  vis.setField("f", mine.field(field));
+  api::Image img = vis.render(settings());
+  EXPECT_EQ(img.empty(), worldRank() != 0);
+}
+
+TEST(InsituMpi, SettingsThatDifferBetweenRanksAreAnError) {
+  if (worldSize() < 2) GTEST_SKIP() << "needs two ranks or more";
+  api::Renderer vis(MPI_COMM_WORLD);
+  SimMesh mine = share(sm::test::hexGrid(3), worldRank(), worldSize());
+  vis.setMesh(mine.view());
+  vis.setField("f", mine.field(field));
+  api::RenderSettings s = settings();
+  if (worldRank() == worldSize() - 1) s.width += 1;
+  try {
+    vis.render(s);
+    ADD_FAILURE() << "render did not throw";
+  } catch (const api::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("render: the settings differ between ranks"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(vis.render(settings()).empty(), worldRank() != 0);  // still in step
+}
+
+}  // namespace
+}  // namespace sm::insitu::test

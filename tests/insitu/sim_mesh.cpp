@@ -1,0 +1,62 @@
+#include "sim_mesh.h"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+namespace sm::insitu::test {
+
+std::vector<float> SimMesh::field(const std::function<float(glm::dvec3)>& f) const {
+  std::vector<float> v(vertices());
+  for (size_t i = 0; i < v.size(); ++i) v[i] = f(point(i));
+  return v;
+}
+
+SimMesh simMesh(const mesh::UnstructuredMesh& m) {
+  SimMesh s;
+  for (const glm::dvec3& p : m.points) s.xyz.insert(s.xyz.end(), {p.x, p.y, p.z});
+  for (int t = 0; t < mesh::kNumCellTypes; ++t)
+    s.cells[t].assign(m.cells[t].begin(), m.cells[t].end());
+  return s;
+}
+
+SimMesh shuffled(const SimMesh& s, uint32_t seed) {
+  std::vector<int64_t> order(s.vertices());  // new position -> old vertex
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+  std::vector<int64_t> newId(order.size());
+  SimMesh out;
+  for (size_t i = 0; i < order.size(); ++i) {
+    newId[order[i]] = int64_t(i);
+    const glm::dvec3 p = s.point(order[i]);
+    out.xyz.insert(out.xyz.end(), {p.x, p.y, p.z});
+  }
+  for (int t = 0; t < 4; ++t)
+    for (int64_t v : s.cells[t]) out.cells[t].push_back(newId[v]);
+  return out;
+}
+
+SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
+  SimMesh out;
+  std::vector<int64_t> newId(m.numPoints(), -1);
+  for (mesh::CellType type : mesh::kAllCellTypes) {
+    const uint32_t nv = mesh::numVerts(type), t = mesh::typeIndex(type);
+    for (size_t e = 0; e + nv <= m.cells[t].size(); e += nv) {
+      double x = 0;
+      for (uint32_t k = 0; k < nv; ++k) x += m.points[m.cells[t][e + k]].x / nv;
+      if (x < lo || x >= hi) continue;
+      for (uint32_t k = 0; k < nv; ++k) {
+        int64_t& id = newId[m.cells[t][e + k]];
+        if (id < 0) {
+          id = int64_t(out.vertices());
+          const glm::dvec3& p = m.points[m.cells[t][e + k]];
+          out.xyz.insert(out.xyz.end(), {p.x, p.y, p.z});
+        }
+        out.cells[t].push_back(id);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace sm::insitu::test

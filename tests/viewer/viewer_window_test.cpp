@@ -1,0 +1,159 @@
+// The viewer end to end, as a user runs it: a window under Xvfb (xvfb-run), driven by a script,
+// compared with `shellmarch render` at the camera the viewer ends with; what reaches the screen
+// (Xvfb's framebuffer) compared with the screenshot; headless use without a display.
+// Every run has the validation layer on (SHELLMARCH_VALIDATION=1 from ctest) and must report
+// no error.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "support/test_support.h"
+#include "viewer_runner.h"
+
+namespace sm::test {
+namespace {
+
+const glm::vec3 kBackground{0.1f, 0.1f, 0.12f};  // render's and view's default
+
+// Orbit, zoom (wheel and drag), pan, a time step, opacity, sampling and colour map, after a
+// resize: everything the state carries, so that a mismatch with render shows.
+const char* kScript =
+    "resize 176 132\n"
+    "frame 2\n"
+    "drag left 60 20 4       # orbit\n"
+    "frame\n"
+    "scroll 2                # zoom in\n"
+    "drag right 0 -12        # and a little more\n"
+    "frame\n"
+    "drag middle 10 -6 2     # pan\n"
+    "key right               # next time step\n"
+    "frame\n"
+    "key up                  # more opaque\n"
+    "key ]                   # coarser sampling\n"
+    "key c                   # next colour map\n"
+    "frame 2\n"
+    "quit\n";
+
+std::string writeScript(const std::string& dir) {
+  const std::string path = dir + "/session.txt";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(kScript, f);
+  std::fclose(f);
+  return path;
+}
+
+void expectCleanRun(const CommandResult& r) {
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation error"), std::string::npos) << r.err;
+}
+
+// The scripted state arrived: sizes, step, settings and a camera moved in all three ways.
+void expectScriptedState(const nlohmann::json& j) {
+  EXPECT_EQ(j["frames"], 7);
+  EXPECT_EQ(j["presented"], 7);
+  EXPECT_EQ(j["size"], nlohmann::json({176, 132}));
+  EXPECT_EQ(j["time"], 1);
+  EXPECT_EQ(j["field"], "vortex");
+  EXPECT_NE(j["colormap"], "viridis");
+  EXPECT_DOUBLE_EQ(j["opacity_scale"].get<double>(), 1.25);
+  EXPECT_GE(j["swapchain_rebuilds"].get<int>(), 1);  // the resize outdated the swapchain
+  EXPECT_EQ(j["validation_errors"], 0);
+  EXPECT_EQ(j["geometry_builds"], 1);  // the time step uploaded scalars only
+  EXPECT_EQ(j["scalar_uploads"], 2);
+  auto v = [&](const char* k, const nlohmann::json& o) {
+    return glm::dvec3(o[k][0].get<double>(), o[k][1].get<double>(), o[k][2].get<double>());
+  };
+  const glm::dvec3 eye = v("eye", j), at = v("at", j), homeEye = v("eye", j["home"]),
+                   homeAt = v("at", j["home"]);
+  EXPECT_LT(glm::length(eye - at), 0.9 * glm::length(homeEye - homeAt));      // zoomed in
+  EXPECT_GT(glm::length(at - homeAt), 1e-3 * glm::length(homeEye - homeAt));  // panned
+  EXPECT_LT(glm::dot(glm::normalize(eye - at), glm::normalize(homeEye - homeAt)), 0.99);  // orbited
+}
+
+// The screenshot equals `shellmarch render` at the viewer's final camera and settings.
+void expectMatchesRender(const std::string& dir, const std::string& mesh, const nlohmann::json& j,
+                         const std::string& shot) {
+  const std::string out = dir + "/render.png";
+  CommandResult r =
+      runCommand(shellmarch() + " render " + quote(mesh) + renderArgs(j) + " --out " + quote(out),
+                 dir, "render");
+  expectCleanRun(r);
+  const scene::Image view = scene::readPng(shot), render = scene::readPng(out);
+  ASSERT_EQ(view.width, 176);
+  ASSERT_EQ(view.height, 132);
+  const scene::ImageError e = scene::compareImages(view, render);
+  std::printf("viewer screenshot vs render: RMSE %.3g, max abs %.3g (8-bit steps %.1f)\n", e.rmse,
+              e.maxAbs, e.maxAbs * 255);
+  EXPECT_LE(e.maxAbs, 1.0 / 255 + 1e-6);
+  EXPECT_GT(pixelsUnlike(view, kBackground), size_t(view.width * view.height / 10));  // not blank
+}
+
+TEST(ViewerWindow, ScriptedSessionUnderXvfbMatchesRender) {
+  const std::string dir = outputDir("ViewerWindow.Scripted");
+  const std::string mesh = generateTestMesh(dir), shot = dir + "/view.png";
+  CommandResult r =
+      runCommand(xvfbRun() + " " + shellmarch() + " view " + quote(mesh) +
+                     " --field vortex --size 160x120 --frames 50 --script " +
+                     quote(writeScript(dir)) + " --screenshot " + quote(shot) + " --print-camera",
+                 dir, "view");
+  expectCleanRun(r);
+  const nlohmann::json j = lastJson(r.out);
+  expectScriptedState(j);
+  expectMatchesRender(dir, mesh, j, shot);
+}
+
+TEST(ViewerHeadless, HeadlessSurfaceWithoutADisplayMatchesRender) {
+  const std::string dir = outputDir("ViewerHeadless.Scripted");
+  const std::string mesh = generateTestMesh(dir), shot = dir + "/view.png";
+  CommandResult r =
+      runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " + quote(mesh) +
+                     " --field vortex --size 160x120 --headless --script " +
+                     quote(writeScript(dir)) + " --screenshot " + quote(shot) + " --print-camera",
+                 dir, "view");
+  expectCleanRun(r);
+  const nlohmann::json j = lastJson(r.out);
+  expectScriptedState(j);
+  expectMatchesRender(dir, mesh, j, shot);
+}
+
+TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
+  const std::string dir = outputDir("ViewerHeadless.NoDisplay");
+  CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
+                                   quote(dir + "/not-read-before-the-window.vtu") + " --frames 1",
+                               dir, "view");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "shellmarch: error: view: no display (DISPLAY is not set): run under xvfb-run, or use "
+            "--headless\n");
+}
+
+TEST(ViewerHeadless, BadInputIsOneLineNamingTheOption) {
+  const std::string dir = outputDir("ViewerHeadless.BadInput");
+  const std::string mesh = generateTestMesh(dir), script = dir + "/bad.txt";
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    std::fputs("frame\ndrag sideways 3 4\n", f);
+    std::fclose(f);
+  }
+  const std::pair<std::string, std::string> cases[] = {
+      {"--headless", "--headless needs --frames or --script"},
+      {"--headless --script " + quote(script), "bad.txt:2: 'drag' needs a button"},
+      {"--headless --frames 1 --time 99", "--time: field 'linear' has 3 time steps"},
+      {"--headless --frames 1 --time all", "--time: 'all' is not a step index"},
+      {"--headless --frames -2", "--frames"},
+      {"--headless --frames 1 --size 0x4", "--size"},
+  };
+  for (const auto& [args, want] : cases) {
+    CommandResult r = runCommand(shellmarch() + " view " + quote(mesh) + " " + args, dir, "view");
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_NE(r.err.find(want), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace sm::test
