@@ -12,6 +12,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "Frames and samples per second per stage, compacted vs plain, next to VTK's unstructured "
        "ray cast mapper, with both images' error against the CPU reference",
        configureRenderBench},
+      {"accuracy",
+       "Error against the CPU reference and time per frame for every rung of the accuracy ladder "
+       "(step sizes, element-exact, fragment encoding, list modes, single-fragment compositing)",
+       configureAccuracyBench},
   };
   return all;
 }
