@@ -21,7 +21,7 @@ struct RankGroup::Shares {
 };
 
 RankGroup::RankGroup(const mesh::UnstructuredMesh& input, const std::string& field, int ranks,
-                     int clusters, const std::string& device)
+                     int clusters, const std::string& device, Dealing dealing)
     : shares_(std::make_unique<Shares>()), device_(device) {
   if (ranks < 1 || clusters < ranks)
     throw Error("--ranks ", ranks, " and --clusters ", clusters, ": need 1 <= ranks <= clusters");
@@ -34,7 +34,8 @@ RankGroup::RankGroup(const mesh::UnstructuredMesh& input, const std::string& fie
     // Round-robin: neighbouring clusters land on different ranks, so every rank's share is
     // scattered through the volume and interlocks with the others'.
     std::vector<int> mine;
-    for (int c = r; c < clusters; c += ranks) mine.push_back(c);
+    for (int c = 0; c < clusters; ++c)
+      if (dealing == Dealing::RoundRobin ? c % ranks == r : r == 0) mine.push_back(c);
     partition::ExtractedClusters e = partition::extractClustersWithPointMap(whole, mine);
     std::vector<float> values(e.originalPoint.size());
     for (size_t i = 0; i < values.size(); ++i) values[i] = f->steps[0][e.originalPoint[i]];

@@ -22,11 +22,15 @@ struct GroupFrame {
   uint64_t lostRays = 0;
 };
 
+// How clusters are dealt to ranks: round-robin (interleaved shares), or all on rank 0 (the others
+// hold nothing: the exchange's overhead over one rank's work).
+enum class Dealing { RoundRobin, AllOnRankZero };
+
 class RankGroup {
  public:
   // Splits `whole` (its field `field`, step 0) into `clusters` METIS clusters over `ranks` ranks.
   RankGroup(const mesh::UnstructuredMesh& whole, const std::string& field, int ranks, int clusters,
-            const std::string& device);
+            const std::string& device, Dealing dealing = Dealing::RoundRobin);
   ~RankGroup();
   RankGroup(const RankGroup&) = delete;
   RankGroup& operator=(const RankGroup&) = delete;

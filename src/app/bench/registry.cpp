@@ -16,6 +16,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "Error against the CPU reference and time per frame for every rung of the accuracy ladder "
        "(step sizes, element-exact, fragment encoding, list modes, single-fragment compositing)",
        configureAccuracyBench},
+      {"features",
+       "Pay for what you use: each optional feature's cost when unused (specialised out, A/A noise "
+       "floor), compiled in without effect, and used",
+       configureFeatureBench},
   };
   return all;
 }
