@@ -12,6 +12,14 @@ const std::vector<BenchCommand>& benchCommands() {
        "Frames and samples per second per stage, compacted vs plain, next to VTK's unstructured "
        "ray cast mapper, with both images' error against the CPU reference",
        configureRenderBench},
+      {"accuracy",
+       "Error against the CPU reference and time per frame for every rung of the accuracy ladder "
+       "(step sizes, element-exact, fragment encoding, list modes, single-fragment compositing)",
+       configureAccuracyBench},
+      {"features",
+       "Pay for what you use: each optional feature's cost when unused (specialised out, A/A noise "
+       "floor), compiled in without effect, and used",
+       configureFeatureBench},
   };
   return all;
 }
