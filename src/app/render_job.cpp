@@ -93,9 +93,10 @@ void renderFrames(const Frames& f) {
   const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
   const uint64_t rankSteps = f.source.numSteps(f.field);
   auto held = [&](size_t i) { return heldStep(f.steps[i % perRun], rankSteps); };
-  auto load = [&](size_t i) -> render::ScalarPrefetcher::Load {
-    return [&source = f.source, &rank = f.rank, &field = f.field, step = held(i)] {
-      return source.scalars(rank, field, step);
+  // A prefetch has a whole frame to finish: one thread, leaving the cores to the frame.
+  auto load = [&](size_t i, unsigned threads) -> render::ScalarPrefetcher::Load {
+    return [&source = f.source, &rank = f.rank, &field = f.field, step = held(i), threads] {
+      return source.scalars(rank, field, step, threads);
     };
   };
   SequenceStats stats(f.job.repeat, f.job.prefetch);
@@ -103,7 +104,7 @@ void renderFrames(const Frames& f) {
   std::optional<uint64_t> shown;  // the step whose scalars frames read
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
-    prefetcher.loadNow(load(0));
+    prefetcher.loadNow(load(0, 0));
     shown = held(0);
     f.renderer.render(f.settings);
   }
@@ -113,9 +114,10 @@ void renderFrames(const Frames& f) {
     if (prefetcher.pending())
       scalars = prefetcher.swap();
     else if (shown != held(i))
-      scalars = prefetcher.loadNow(load(i));
+      scalars = prefetcher.loadNow(load(i, 0));
     shown = held(i);
-    if (f.job.prefetch && i + 1 < total && held(i + 1) != held(i)) prefetcher.prefetch(load(i + 1));
+    if (f.job.prefetch && i + 1 < total && held(i + 1) != held(i))
+      prefetcher.prefetch(load(i + 1, 1));
     Timer renderTimer;
     render::FrameResult frame = f.renderer.render(f.settings);
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();

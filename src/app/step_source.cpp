@@ -21,9 +21,12 @@ uint64_t StepSource::numSteps(const std::string& field) const {
   return f ? f->numSteps() : 0;
 }
 
-std::vector<float> StepSource::read(const std::string& field, uint64_t step) const {
+std::vector<float> StepSource::read(const std::string& field, uint64_t step,
+                                    unsigned threads) const {
   const StepStream& s = *share_.stream;
-  std::vector<float> v = io::readFieldStep(path_, field, step, s.read, s.filePoints);
+  io::ReadOptions o = s.read;
+  if (threads) o.threads = threads;
+  std::vector<float> v = io::readFieldStep(path_, field, step, o, s.filePoints);
   if (v.size() != numPoints_)  // the file changed since it was loaded
     throw FileError(path_, "field '", field, "' step ", step, " has ", v.size(), " values for ",
                     numPoints_, " points");
@@ -40,7 +43,7 @@ mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
 }
 
 std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std::string& field,
-                                       uint64_t step) const {
+                                       uint64_t step, unsigned threads) const {
   if (rank.numVertices() == 0) return {};
   const uint64_t n = numSteps(field);
   if (n == 0) {
@@ -56,7 +59,7 @@ std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std
     throw Error("--time: field '", field, "' has ", n, " time steps (0 .. ", n - 1, "), not step ",
                 step);
   if (!share_.stream) return prep::gatherScalars(rank, share_.mesh.findField(field)->steps[step]);
-  return prep::gatherScalars(rank, read(field, step));
+  return prep::gatherScalars(rank, read(field, step, threads));
 }
 
 }  // namespace sm::app

@@ -23,12 +23,13 @@ class StepSource {
   mesh::Range range(const std::string& field, uint64_t step) const;
   // One step in `rank`'s vertex order (empty for a rank without vertices); throws naming --field
   // when the field is missing, as app::fieldStep does. Reads files only, so it may run on a
-  // thread of its own while frames render.
+  // thread of its own while frames render. `threads` decompress and convert (0: the read
+  // options' count).
   std::vector<float> scalars(const prep::PreparedRank& rank, const std::string& field,
-                             uint64_t step) const;
+                             uint64_t step, unsigned threads = 0) const;
 
  private:
-  std::vector<float> read(const std::string& field, uint64_t step) const;
+  std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0) const;
 
   std::string path_;
   const RankShare& share_;
