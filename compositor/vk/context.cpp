@@ -374,18 +374,24 @@ void Context::setName(VkObjectType type, uint64_t handle, const std::string& nam
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  // The pool and the queue are externally synchronised: recording and submitting hold the lock,
+  // waiting does not, so that one thread's upload runs while another's frame is on the queue.
+  std::unique_lock lock(submitMutex_);
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
   SM_VK(vkAllocateCommandBuffers(device_, &ai, &cmd));
-  struct Free {
-    VkDevice d;
-    VkCommandPool p;
-    VkCommandBuffer c;
-    ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
-  } guard{device_, pool_, cmd};
+  struct Free {  // frees under the lock, taking it again after the wait
+    const Context& ctx;
+    std::unique_lock<std::mutex>& lock;
+    VkCommandBuffer cmd;
+    ~Free() {
+      if (!lock.owns_lock()) lock.lock();
+      vkFreeCommandBuffers(ctx.device_, ctx.pool_, 1, &cmd);
+    }
+  } guard{*this, lock, cmd};
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   SM_VK(vkBeginCommandBuffer(cmd, &bi));
@@ -399,6 +405,7 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd;
   SM_VK(vkQueueSubmit(queue_, 1, &si, fence));
+  lock.unlock();
   SM_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
 }
 

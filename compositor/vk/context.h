@@ -76,7 +76,9 @@ class Context {
                       VkMemoryPropertyFlags avoid = 0) const;
   void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
-  // Records commands into a one-time command buffer, submits and waits.
+  // Records commands into a one-time command buffer, submits and waits. Thread-safe: threads
+  // record and submit one at a time and wait for their own work side by side (`record` must not
+  // call submitAndWait).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
   // Validation messages seen so far (errors and warnings), for tests.
@@ -113,6 +115,7 @@ class Context {
   uint32_t subgroupSize_ = 1;
   std::atomic<uint64_t> errors_{0}, warnings_{0};
   mutable std::mutex messagesMutex_;
+  mutable std::mutex submitMutex_;  // command pool and queue
   std::vector<std::string> messages_;
 };
 

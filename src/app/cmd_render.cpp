@@ -1,5 +1,6 @@
 // shellmarch render MESH --field NAME [--time T|all] [--size WxH] [camera] [transfer function]
-//                        [--step DT] [--clusters N] [--out FILE.png] [--stats]
+//                        [--step DT] [--clusters N] [--out FILE.png] [--stats] [--repeat R]
+//                        [--no-prefetch]
 #include <memory>
 
 #include "app/cli_parsers.h"
@@ -27,6 +28,13 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--stats", job->stats,
                 "Print segments and fragments per pixel, lost rays, ms per stage");
   cmd->add_option("--stats-json", job->statsJson, "Write the statistics as JSON to this file");
+  cmd->add_option(
+      "--repeat", job->repeat,
+      "Render the step sequence R times and report fps over the runs (images are written "
+      "once)");
+  cmd->add_flag_callback(
+      "--no-prefetch", [job] { job->prefetch = false; },
+      "Load each step when its frame starts instead of while the frame before renders");
   cmd->callback([job, raw] {
     applySceneOptions(*raw, *job);
     if (!raw->text["--composite"].empty())

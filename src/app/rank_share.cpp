@@ -30,34 +30,71 @@ std::vector<int> clustersOfRank(const std::vector<int>& clusterToRank, int rank)
   return mine;
 }
 
+// Formats whose steps io::readFieldStep reads without reading the whole file again.
+bool canStream(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  return ext == ".vtu" || ext == ".pvtu";
+}
+
+// Reading for a stream: one step per field in memory, the step counts from the headers.
+io::ReadOptions streamRead(const std::string& path, const ShareOptions& o, StepStream& stream) {
+  stream.read = o.read;
+  stream.read.step.reset();
+  io::ReadOptions read = o.read;
+  read.step = 0;
+  stream.fieldSteps = io::listFieldSteps(path, stream.read);
+  return read;
+}
+
 RankShare readPieces(const std::string& path, const ShareOptions& o, Collectives& coll) {
   std::vector<uint64_t> sizes = io::pieceCellCounts(path);
   std::vector<int> toRank = partition::assignClustersToRanks(sizes, coll.size());
   RankShare s;
   s.totalClusters = int(sizes.size());
   s.clusters = clustersOfRank(toRank, coll.rank());
+  if (o.streamSteps) s.stream.emplace();
   if (!s.clusters.empty()) {
     io::ReadOptions read = o.read;
     read.pieces = s.clusters;
+    if (s.stream) {
+      ShareOptions mine = o;
+      mine.read.pieces = s.clusters;
+      read = streamRead(path, mine, *s.stream);
+    }
     s.mesh = io::readMesh(path, read);
+    if (s.stream) s.stream->filePoints = std::move(s.mesh.pointOrigin);
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
   return s;
 }
 
+// Point i of the extraction is file point base[extracted[i]] (base empty: the identity).
+std::vector<uint32_t> composePointMaps(const std::vector<uint32_t>& base,
+                                       std::vector<uint32_t> extracted) {
+  if (!base.empty())
+    for (uint32_t& p : extracted) p = base[p];
+  return extracted;
+}
+
 RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives& coll) {
-  mesh::UnstructuredMesh whole = io::readMesh(path, o.read);
+  RankShare s;
+  io::ReadOptions read = o.read;
+  if (o.streamSteps && canStream(path)) read = streamRead(path, o, s.stream.emplace());
+  mesh::UnstructuredMesh whole = io::readMesh(path, read);
   if (o.metisClusters > 0) partition::assignMetisClusters(whole, o.metisClusters);
   std::vector<uint64_t> sizes = partition::clusterSizes(whole);
   std::vector<int> toRank = partition::assignClustersToRanks(sizes, coll.size());
-  RankShare s;
   s.totalClusters = int(sizes.size());
   s.clusters = clustersOfRank(toRank, coll.rank());
   if (coll.size() == 1) {
+    if (s.stream) s.stream->filePoints = std::move(whole.pointOrigin);
     s.mesh = std::move(whole);
   } else {
-    s.mesh = partition::extractClusters(whole, s.clusters);
+    partition::ExtractedClusters mine = partition::extractClustersWithPointMap(whole, s.clusters);
+    if (s.stream)
+      s.stream->filePoints = composePointMaps(whole.pointOrigin, std::move(mine.originalPoint));
+    s.mesh = std::move(mine.mesh);
     s.mesh.source = path;
   }
   return s;

@@ -2,6 +2,7 @@
 // and what every rank must agree on (global bounds, ranges, element size).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,17 @@ namespace sm::app {
 struct ShareOptions {
   io::ReadOptions read;
   int metisClusters = 0;  // > 0: split into this many clusters with METIS (ignores file clusters)
+  // Keep one time step in memory and read the others from the file when they are needed (.vtu and
+  // .pvtu; other formats are loaded whole, every step in memory).
+  bool streamSteps = false;
+};
+
+// How a streamed share reads its other steps: io::readFieldStep(path, field, step, read,
+// filePoints) gives them in the order of the share's mesh.
+struct StepStream {
+  io::ReadOptions read;
+  std::vector<uint32_t> filePoints;            // empty: the file's points, in order
+  std::vector<io::FieldStepCount> fieldSteps;  // of this rank's clusters
 };
 
 struct RankShare {
@@ -24,6 +36,7 @@ struct RankShare {
   mesh::Bounds wholeBounds;            // of the whole data set (all ranks)
   render::ElementSizeSum elementSize;  // whole data set
   uint64_t wholeElements = 0;
+  std::optional<StepStream> stream;  // set when the mesh holds one step per field
 };
 
 // Reads what this rank needs. A .pvtu is split by pieces: each rank reads only its own pieces

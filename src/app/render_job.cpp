@@ -1,20 +1,21 @@
 #include "app/render_job.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-
-#include <nlohmann/json.hpp>
+#include <optional>
 
 #include "app/frame_extras.h"
 #include "app/rank_pipeline.h"
 #include "app/render_setup.h"
 #include "app/render_stats.h"
+#include "app/sequence_stats.h"
+#include "app/step_source.h"
 #include "common/error.h"
 #include "common/file_util.h"
-#include "common/log.h"
 #include "common/timer.h"
 #include "render/renderer.h"
+#include "render/scalar_prefetch.h"
 #include "scene/image.h"
 #include "vk/context.h"
 
@@ -24,7 +25,7 @@ namespace {
 std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   available = std::max<uint64_t>(available, 1);
   if (job.time == "all") {
-    std::vector<uint64_t> all(std::max<uint64_t>(available, 1));
+    std::vector<uint64_t> all(available);
     for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
     return all;
   }
@@ -38,22 +39,112 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   return {uint64_t(t)};
 }
 
+// The step a rank shows for `step`: a rank whose clusters carry fewer steps holds its last one.
+uint64_t heldStep(uint64_t step, uint64_t rankSteps) {
+  return std::min(step, std::max<uint64_t>(rankSteps, 1) - 1);
+}
+
+// Range of `field` over the steps to render, over all ranks, reading one step at a time;
+// [0, 1] when no rank has a finite value.
+std::pair<double, double> sequenceRange(const StepSource& source, const std::string& field,
+                                        const std::vector<uint64_t>& steps, Collectives& coll) {
+  std::vector<uint64_t> held;
+  for (uint64_t s : steps) held.push_back(heldStep(s, source.numSteps(field)));
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  mesh::Range r;
+  for (uint64_t s : held) r.extend(source.range(field, s));
+  double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
+  if (!(lo <= hi)) return {0.0, 1.0};
+  return {lo, hi};
+}
+
+// What the frames of one render touch.
+struct Frames {
+  const RenderJob& job;
+  const std::vector<uint64_t>& steps;
+  const StepSource& source;
+  const std::string& field;
+  const prep::PreparedRank& rank;
+  render::GpuScene& gpu;
+  render::Renderer& renderer;
+  comp::DeepCompositor& compositor;
+  const render::RenderSettings& settings;
+  StatsReport& report;
+  Collectives& coll;
+};
+
+// Statistics, extras and the image of a frame of the first run (collective).
+void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
+  f.report.addFrame(step, frame, f.renderer, f.compositor);
+  const bool sequence = f.steps.size() > 1;
+  writeFrameExtras(f.job, f.compositor, frame.pixels, step, sequence, f.coll);
+  if (f.coll.rank() == 0) {
+    scene::Image img(f.job.width, f.job.height);
+    img.pixels = std::move(frame.pixels);
+    scene::writeImage(framePath(f.job.out, step, sequence), img, f.job.background);
+  }
+}
+
+// Renders the steps job.repeat times. Each frame's scalars were read and uploaded while the frame
+// before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
+// a frame whose step is the one shown already (a rank holding its last step) loads nothing.
+void renderFrames(const Frames& f) {
+  const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
+  const uint64_t rankSteps = f.source.numSteps(f.field);
+  auto held = [&](size_t i) { return heldStep(f.steps[i % perRun], rankSteps); };
+  // A prefetch has a whole frame to finish: one thread, leaving the cores to the frame.
+  auto load = [&](size_t i, unsigned threads) -> render::ScalarPrefetcher::Load {
+    return [&source = f.source, &rank = f.rank, &field = f.field, step = held(i), threads] {
+      return source.scalars(rank, field, step, threads);
+    };
+  };
+  SequenceStats stats(f.job.repeat, f.job.prefetch);
+  render::ScalarPrefetcher prefetcher(f.gpu);
+  std::optional<uint64_t> shown;  // the step whose scalars frames read
+  if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
+    // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
+    prefetcher.loadNow(load(0, 0));
+    shown = held(0);
+    f.renderer.render(f.settings);
+  }
+  for (size_t i = 0; i < total; ++i) {
+    Timer frameTimer;
+    render::ScalarSwitch scalars;
+    if (prefetcher.pending())
+      scalars = prefetcher.swap();
+    else if (shown != held(i))
+      scalars = prefetcher.loadNow(load(i, 0));
+    shown = held(i);
+    if (f.job.prefetch && i + 1 < total && held(i + 1) != held(i))
+      prefetcher.prefetch(load(i + 1, 1));
+    Timer renderTimer;
+    render::FrameResult frame = f.renderer.render(f.settings);
+    const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
+    stats.addFrame(int(i / perRun), f.steps[i % perRun], frameMs, renderMs, scalars);
+    if (i < perRun) writeFrame(f, f.steps[i], frame);
+  }
+  if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
+}
+
 }  // namespace
 
 void runRender(const RenderJob& job, Collectives& coll) {
   checkImageSize(job);
-  Timer total;
-  RankShare share = loadRankShare(job.mesh, job.share, coll);
-  const double loadSeconds = total.seconds();
-  const std::string field = resolveField(job, share.mesh);
-  const uint64_t available =
-      share.mesh.findField(field) ? share.mesh.findField(field)->numSteps() : 1;
-  const std::vector<uint64_t> steps = stepsToRender(job, coll.max(double(available)));
-  const std::pair<double, double> range =
-      job.range ? *job.range : globalRange(share.mesh, field, steps, coll);
-
+  if (job.repeat < 1) throw Error("--repeat: must be at least 1, not ", job.repeat);
   if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
     throw Error("--out: '", job.out, "' must end in .png or .pfm");
+  Timer total;
+  ShareOptions shareOptions = job.share;
+  shareOptions.streamSteps = true;
+  RankShare share = loadRankShare(job.mesh, shareOptions, coll);
+  const StepSource source(job.mesh, share);
+  const std::string field = resolveField(job, share.mesh);
+  const std::vector<uint64_t> steps =
+      stepsToRender(job, uint64_t(coll.max(double(source.numSteps(field)))));
+  const std::pair<double, double> range =
+      job.range ? *job.range : sequenceRange(source, field, steps, coll);
+  const double loadSeconds = total.seconds();  // with the range pass over the steps
   render::RenderSettings s = makeSettings(job, share, range);
   s.compositeMethod = job.composite;
 
@@ -69,20 +160,8 @@ void runRender(const RenderJob& job, Collectives& coll) {
   StatsReport report(job, coll);
   report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
                   ctx.deviceName(), s);
-  for (uint64_t step : steps) {
-    // A rank whose clusters carry fewer steps (or none) holds its last one.
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field,
-                             std::min(step, std::max<uint64_t>(available, 1) - 1)));
-    render::FrameResult frame = renderer.render(s);
-    report.addFrame(step, frame, renderer, compositor);
-    const bool sequence = steps.size() > 1;
-    writeFrameExtras(job, compositor, frame.pixels, step, sequence, coll);
-    if (coll.rank() == 0) {
-      scene::Image img(job.width, job.height);
-      img.pixels = std::move(frame.pixels);
-      scene::writeImage(framePath(job.out, step, sequence), img, job.background);
-    }
-  }
+  renderFrames(
+      {job, steps, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
   report.finish(ctx.validationErrors());
 }
 

@@ -44,6 +44,8 @@ struct RenderJob {
   std::string heatmaps;   // prefix: fragment-count heatmaps per rank and combined (PNG)
   bool stats = false;
   std::string statsJson;  // write statistics as JSON here
+  int repeat = 1;         // render the step sequence this many times (benchmarks); images once
+  bool prefetch = true;   // read and upload the next step while a frame renders
 };
 
 void runRender(const RenderJob& job, Collectives& coll);

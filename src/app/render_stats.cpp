@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "app/render_job.h"
+#include "app/sequence_stats.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "prep/memory_report.h"
@@ -166,6 +167,7 @@ void StatsReport::finish(uint64_t validationErrors) {
   if (coll_.rank() == 0 && job_.stats) {
     printSetup();
     for (const auto& fr : json_["frames"]) printFrame(fr);
+    if (json_.contains("sequence")) printSequenceSummary(json_["sequence"]);
   }
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";

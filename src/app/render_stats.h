@@ -34,6 +34,8 @@ class StatsReport {
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
   void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer,
                 comp::DeepCompositor& compositor);
+  // The step sequence's summary (SequenceStats), printed after the frames and kept as "sequence".
+  void setSequence(nlohmann::json summary) { json_["sequence"] = std::move(summary); }
   // Prints (rank 0) and writes JSON; throws when validation reported errors.
   void finish(uint64_t validationErrors);
 

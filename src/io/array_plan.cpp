@@ -67,9 +67,18 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
   return std::make_pair(std::string(request.substr(0, open)), k);
 }
 
-void addGroup(std::vector<FieldLoad>& loads, const Group& g, int component,
-              const std::string& field) {
-  for (const auto& [step, array] : g.steps) loads.push_back({array, component, field, step});
+void addGroup(std::vector<FieldLoad>& loads, const std::string& source, const Group& g,
+              int component, const std::string& field, std::optional<uint64_t> onlyStep) {
+  if (!onlyStep) {
+    for (const auto& [step, array] : g.steps) loads.push_back({array, component, field, step});
+    return;
+  }
+  // The steps not loaded are still checked, so that a file missing one fails as a full read does.
+  for (uint64_t i = 0; i < g.steps.size(); ++i)
+    if (g.steps[i].first != i)
+      throw FileError(source, "point field '", field, "' has no values for time step ", i);
+  const size_t chosen = std::min<uint64_t>(*onlyStep, g.steps.size() - 1);
+  loads.push_back({g.steps[chosen].second, component, field, 0});
 }
 
 }  // namespace
@@ -94,7 +103,7 @@ std::vector<FieldLoad> planFields(const std::string& source,
   const std::vector<Group> groups = groupArrays(source, pointArrays);
   if (options.fields.empty()) {
     for (const auto& g : groups)
-      if (!g.identifier) addGroup(loads, g, -1, g.base);
+      if (!g.identifier) addGroup(loads, source, g, -1, g.base, options.step);
     return loads;
   }
   std::vector<std::string> done;
@@ -106,7 +115,7 @@ std::vector<FieldLoad> planFields(const std::string& source,
                           [&](const Group& g) { return g.base == n; });
     };
     if (auto it = byName(request); it != groups.end()) {
-      addGroup(loads, *it, -1, request);
+      addGroup(loads, source, *it, -1, request, options.step);
       continue;
     }
     auto split = splitComponent(request);
@@ -117,7 +126,7 @@ std::vector<FieldLoad> planFields(const std::string& source,
     if (uint32_t(split->second) >= it->components)
       throw FileError(source, "field '", request, "': point array '", it->base, "' has ",
                       it->components, it->components == 1 ? " component" : " components");
-    addGroup(loads, *it, split->second, request);
+    addGroup(loads, source, *it, split->second, request, options.step);
   }
   return loads;
 }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,10 @@ struct ReadOptions {
   std::vector<int> pieces;
   // Threads for decompression and conversions (0: all cores; 1 for per-core measurements).
   unsigned threads = 0;
+  // Load only this time step of every field, as the field's one step (a field with fewer steps:
+  // its last), so that memory does not grow with the number of steps; later steps are read with
+  // readFieldStep. Unset: every step.
+  std::optional<uint64_t> step;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});
@@ -52,6 +57,31 @@ int countPieces(const std::string& path);
 // Cells each piece of a .pvtu declares in its header (the pieces are not read): what ranks need to
 // share pieces out by element count before each reads only its own.
 std::vector<uint64_t> pieceCellCounts(const std::string& path);
+
+// A point field readMesh loads and its number of time steps.
+struct FieldStepCount {
+  std::string name;
+  uint64_t steps = 0;
+};
+
+// The point fields readMesh(path, options) loads, with their step counts, without loading them:
+// .vtu and .pvtu are read from their XML headers (a .pvtu's from the headers of the pieces in
+// options.pieces, which must agree); legacy .vtk and .ugrid files are read whole.
+std::vector<FieldStepCount> listFieldSteps(const std::string& path,
+                                           const ReadOptions& options = {});
+
+// Step `step` of point field `field` ("NAME" or "NAME[k]", as ReadOptions::fields), read from the
+// file without its points and cells: only that field's DataArray is decoded (.vtu, and the .vtu
+// pieces in options.pieces of a .pvtu). Values come in the order of the points of the pieces
+// read, numbered one after another; when `pointMap` is not empty, value i is the value of that
+// point pointMap[i]. Pass the point origins of the mesh readMesh(path, options) returned
+// (mesh.pointOrigin) to get that mesh's order: a .pvtu's welded points, or a .vtu's own points
+// (pointOrigin empty). Legacy .vtk and .ugrid files are read whole (slow; the rest of the mesh is
+// dropped). Throws sm::FileError naming the file and the array for a field or step that is not
+// there and for damaged or truncated data.
+std::vector<float> readFieldStep(const std::string& path, const std::string& field, uint64_t step,
+                                 const ReadOptions& options = {},
+                                 std::span<const uint32_t> pointMap = {});
 
 struct WriteOptions {
   bool compress = true;  // zlib-compressed appended raw data

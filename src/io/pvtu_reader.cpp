@@ -11,9 +11,8 @@
 #include "io/weld.h"
 
 namespace sm::io {
-namespace {
 
-std::vector<std::string> pieceFiles(const std::string& path) {
+std::vector<std::string> pvtuPieceFiles(const std::string& path) {
   FileBytes bytes = FileBytes::open(path);
   VtuDocument doc(bytes, path, "PUnstructuredGrid");
   pugi::xml_node grid = doc.root().child("PUnstructuredGrid");
@@ -29,7 +28,7 @@ std::vector<std::string> pieceFiles(const std::string& path) {
   return files;
 }
 
-std::vector<int> chosenPieces(const std::string& path, int count, const ReadOptions& options) {
+std::vector<int> pvtuChosenPieces(const std::string& path, int count, const ReadOptions& options) {
   std::vector<int> chosen = options.pieces;
   if (chosen.empty()) {
     for (int i = 0; i < count; ++i) chosen.push_back(i);
@@ -45,10 +44,8 @@ std::vector<int> chosenPieces(const std::string& path, int count, const ReadOpti
   return chosen;
 }
 
-}  // namespace
-
 int countPvtuPieces(const std::string& path) {
-  return static_cast<int>(pieceFiles(path).size());
+  return static_cast<int>(pvtuPieceFiles(path).size());
 }
 
 namespace {
@@ -81,15 +78,17 @@ uint64_t declaredCells(const std::string& file) {
 
 std::vector<uint64_t> pieceCellCounts(const std::string& path) {
   std::vector<uint64_t> counts;
-  for (const std::string& file : pieceFiles(path)) counts.push_back(declaredCells(file));
+  for (const std::string& file : pvtuPieceFiles(path)) counts.push_back(declaredCells(file));
   return counts;
 }
 
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options) {
-  const std::vector<std::string> files = pieceFiles(path);
+  const std::vector<std::string> files = pvtuPieceFiles(path);
   std::vector<mesh::UnstructuredMesh> pieces;
-  for (int i : chosenPieces(path, static_cast<int>(files.size()), options))
+  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
     pieces.push_back(readVtu(FileBytes::open(files[i]), files[i], options, i));
+  // Pieces loaded with one step each cannot show the weld that their step counts differ.
+  if (options.step && options.loadFields && pieces.size() > 1) listFieldSteps(path, options);
   return weldPieces(path, std::move(pieces));
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/file_bytes.h"
 #include "io/mesh_io.h"
@@ -18,6 +19,10 @@ mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                std::optional<int32_t> pieceCluster = std::nullopt);
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options);
 int countPvtuPieces(const std::string& path);
+// The piece files a .pvtu names (paths resolved against its folder).
+std::vector<std::string> pvtuPieceFiles(const std::string& path);
+// options.pieces checked against `count` and sorted; every piece when empty.
+std::vector<int> pvtuChosenPieces(const std::string& path, int count, const ReadOptions& options);
 mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,
                                      const ReadOptions& options);
 // sideFiles: look for per-vertex field files beside `source` (docs/FORMATS.md); off for memory.

@@ -8,28 +8,19 @@
 #include "common/log.h"
 #include "io/array_plan.h"
 #include "io/readers.h"
+#include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
 #include "mesh/mesh_builder.h"
 
 namespace sm::io {
 namespace {
 
-struct Piece {
-  pugi::xml_node node;
-  uint64_t numPoints = 0, numCells = 0;
-  uint64_t firstPoint = 0, firstCell = 0;  // in the whole file
-};
+using Piece = VtuPiece;
 
 // VTK's ghost flag for cells another piece owns (vtkDataSetAttributes::DUPLICATECELL).
 constexpr int64_t kDuplicateCell = 1;
 // Ids handed to the builder per cell; volume cells need at most 27 (triquadratic hexahedron).
 constexpr int64_t kMaxIds = 32;
-
-pugi::xml_node findArray(pugi::xml_node parent, std::string_view name) {
-  for (pugi::xml_node a : parent.children("DataArray"))
-    if (name == a.attribute("Name").value()) return a;
-  return {};
-}
 
 std::string quoted(std::string_view what, std::string_view name) {
   return concat(what, " '", name, "'");
@@ -55,19 +46,7 @@ class VtuReader {
   }
 
  private:
-  void findPieces() {
-    pugi::xml_node grid = doc_.root().child("UnstructuredGrid");
-    if (!grid) throw FileError(src_, "has no <UnstructuredGrid> element");
-    uint64_t points = 0, cells = 0;
-    for (pugi::xml_node p : grid.children("Piece")) {
-      Piece piece{p, doc_.count(p, "NumberOfPoints"), doc_.count(p, "NumberOfCells"), points,
-                  cells};
-      points += piece.numPoints;
-      cells += piece.numCells;
-      pieces_.push_back(piece);
-    }
-    if (pieces_.empty()) throw FileError(src_, "has no <Piece> element");
-  }
+  void findPieces() { pieces_ = vtuPieces(doc_); }
 
   void readPoints() {
     std::vector<glm::dvec3> all;
@@ -92,7 +71,7 @@ class VtuReader {
       if (p.numCells == 0) continue;
       pugi::xml_node cells = p.node.child("Cells");
       auto need = [&](const char* name) {
-        pugi::xml_node a = findArray(cells, name);
+        pugi::xml_node a = findDataArray(cells, name);
         if (!a) throw FileError(src_, "has ", p.numCells, " cells but no '", name, "' array");
         return a;
       };
@@ -112,7 +91,7 @@ class VtuReader {
         throw FileError(src_, "cell connectivity has type ", scalarTypeName(conn.type),
                         "; point ids must be integers");
       std::vector<int64_t> ghost;
-      if (pugi::xml_node g = findArray(p.node.child("CellData"), "vtkGhostType"))
+      if (pugi::xml_node g = findDataArray(p.node.child("CellData"), "vtkGhostType"))
         ghost = toInt64(doc_.decode(g, p.numCells, "cell array 'vtkGhostType'", 1), src_,
                         "vtkGhostType");
       reserve(types);
@@ -181,7 +160,7 @@ class VtuReader {
     const std::string& name = names[*chosen];
     std::vector<int64_t> ids;
     for (const Piece& p : pieces_) {
-      pugi::xml_node a = findArray(p.node.child("CellData"), name);
+      pugi::xml_node a = findDataArray(p.node.child("CellData"), name);
       if (!a) throw FileError(src_, "a piece lacks the cell array '", name, "'");
       std::vector<int64_t> v = toInt64(doc_.decode(a, p.numCells, quoted("cell array", name), 1),
                                        src_, quoted("cell array", name));
@@ -190,28 +169,14 @@ class VtuReader {
     builder_.setClusterIds(ids, name);
   }
 
-  std::vector<ArrayInfo> pointArrays() const {
-    pugi::xml_node pd = pieces_[0].node.child("PointData");
-    std::string_view globalIds = pd.attribute("GlobalIds").value();
-    std::string_view pedigreeIds = pd.attribute("PedigreeIds").value();
-    std::vector<ArrayInfo> infos;
-    for (pugi::xml_node a : pd.children("DataArray")) {
-      std::string_view name = a.attribute("Name").value();
-      if (!scalarTypeFromXml(a.attribute("type").value())) continue;  // strings and the like
-      bool id = name == globalIds || name == pedigreeIds || isBookkeepingArray(name);
-      infos.push_back({std::string(name), doc_.components(a, quoted("point array", name)), id});
-    }
-    return infos;
-  }
-
   void readFields() {
     if (!options_.loadFields) return;
-    std::vector<ArrayInfo> infos = pointArrays();
+    std::vector<ArrayInfo> infos = vtuPointArrays(doc_, pieces_[0]);
     for (const FieldLoad& load : planFields(src_, infos, options_)) {
       const std::string& name = infos[load.array].name;
       std::vector<float> values;
       for (const Piece& p : pieces_) {
-        pugi::xml_node a = findArray(p.node.child("PointData"), name);
+        pugi::xml_node a = findDataArray(p.node.child("PointData"), name);
         if (!a) throw FileError(src_, "a piece lacks the point array '", name, "'");
         std::vector<float> v = toFloats(
             doc_.decode(a, p.numPoints, quoted("point array", name), infos[load.array].components),

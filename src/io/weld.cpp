@@ -25,10 +25,12 @@ bool sameBits(const glm::dvec3& a, const glm::dvec3& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-// Point ids of the welded mesh for every point of every piece, and the piece that first had each.
+// Point ids of the welded mesh for every point of every piece, the piece that first had each, and
+// where that was in the pieces' points numbered one after another (the mesh's pointOrigin).
 struct Welding {
   std::vector<glm::dvec3> points;
   std::vector<uint32_t> firstPiece;
+  std::vector<uint32_t> origin;
   std::vector<std::vector<uint32_t>> remap;
 };
 
@@ -38,6 +40,8 @@ Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
   Welding w;
   w.points.reserve(total);
   w.firstPiece.reserve(total);
+  w.origin.reserve(total);
+  uint32_t pieceStart = 0;
   const uint64_t tableSize = std::bit_ceil(std::max<uint64_t>(2 * total, 16));
   const uint64_t mask = tableSize - 1;
   std::vector<uint32_t> table(tableSize, kEmpty);
@@ -53,6 +57,7 @@ Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
           table[slot] = e;
           w.points.push_back(pts[i]);
           w.firstPiece.push_back(k);
+          w.origin.push_back(pieceStart + static_cast<uint32_t>(i));
           map[i] = e;
           break;
         }
@@ -62,6 +67,7 @@ Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
         }
       }
     }
+    pieceStart += static_cast<uint32_t>(pts.size());
   }
   return w;
 }
@@ -140,6 +146,7 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
     if (out.timeValues.empty()) out.timeValues = std::move(p.timeValues);
   }
   out.points = std::move(w.points);
+  out.pointOrigin = std::move(w.origin);
   return out;
 }
 

@@ -124,6 +124,7 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
                                   fb->steps[s].end());
   }
   a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  a.pointOrigin.clear();  // the points of a and b may come from different reads
   for (int t = 0; t < kNumCellTypes; ++t) {
     a.cells[t].reserve(a.cells[t].size() + b.cells[t].size());
     for (uint32_t id : b.cells[t]) a.cells[t].push_back(static_cast<uint32_t>(id + offset));

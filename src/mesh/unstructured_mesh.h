@@ -58,6 +58,10 @@ struct UnstructuredMesh {
   std::vector<double> timeValues;  // time of each step, when the file says
   SkippedCells skipped;
   uint64_t invertedFixed = 0;
+  // For meshes joined from pieces (.pvtu): point i is point pointOrigin[i] of the pieces read,
+  // their points numbered one after another, so that a later time step can be read without the
+  // points (io::readFieldStep). Empty where the points are the file's own, in its order.
+  std::vector<uint32_t> pointOrigin;
 
   uint64_t numPoints() const { return points.size(); }
   uint64_t numCells(CellType t) const { return cells[typeIndex(t)].size() / numVerts(t); }

@@ -5,6 +5,7 @@
 
 #include <glm/common.hpp>
 
+#include "common/check.h"
 #include "common/error.h"
 
 namespace sm::render {
@@ -50,8 +51,8 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
   for (size_t i = 0; i + 2 < r.positions.size(); i += 3)
     bounds_.extend(glm::dvec3(r.positions[i], r.positions[i + 1], r.positions[i + 2]));
   positions_ = vk::makeBuffer<float>(ctx, r.positions, "positions", kAsInput);
-  scalars_ = vk::Buffer(ctx, numVertices_ * sizeof(float), vk::kStorageUsage, vk::MemoryUse::Device,
-                        "scalars");
+  scalars_[0] = vk::Buffer(ctx, numVertices_ * sizeof(float), vk::kStorageUsage,
+                           vk::MemoryUse::Device, "scalars");
   shellIndices_ = vk::makeBuffer<uint32_t>(ctx, r.shellIndices, "shell indices", kAsInput);
   shellRefs_ = vk::makeBuffer<uint32_t>(ctx, r.shellRefs, "shell element refs");
   shellOther_ = vk::makeBuffer<uint32_t>(ctx, r.shellOther, "shell quad vertices");
@@ -85,14 +86,30 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
 void GpuScene::setScalars(const std::vector<float>& values) {
   if (values.size() != numVertices_)
     throw Error("scalars for ", values.size(), " vertices, the scene has ", numVertices_);
-  scalars_.upload(values.data(), values.size() * sizeof(float));
+  scalars_[front_].upload(values.data(), values.size() * sizeof(float));
   ++scalarUploads_;
+}
+
+void GpuScene::stageScalars(std::span<const float> values) {
+  if (values.size() != numVertices_)
+    throw Error("scalars for ", values.size(), " vertices, the scene has ", numVertices_);
+  vk::Buffer& back = scalars_[1 - front_];
+  if (!back.valid())
+    back = vk::Buffer(ctx_, numVertices_ * sizeof(float), vk::kStorageUsage, vk::MemoryUse::Device,
+                      "scalars (next)");
+  back.upload(values.data(), values.size() * sizeof(float));
+  ++scalarUploads_;
+}
+
+void GpuScene::swapScalars() {
+  SM_CHECK(scalars_[1 - front_].valid());
+  front_ = 1 - front_;
 }
 
 gpu::SceneRefs GpuScene::refs() const {
   gpu::SceneRefs s{};
   s.positions = positions_.address();
-  s.scalars = scalars_.address();
+  s.scalars = scalars_[front_].address();
   for (int t = 0; t < 4; ++t) {
     s.elements[t] = elements_[t].address();
     s.neighbors[t] = neighbors_[t].address();
@@ -105,8 +122,9 @@ gpu::SceneRefs GpuScene::refs() const {
 }
 
 uint64_t GpuScene::deviceBytes() const {
-  uint64_t b = positions_.size() + scalars_.size() + shellIndices_.size() + shellRefs_.size() +
-               shellOther_.size() + shellAdjacency_.size() + accelerationStructureBytes();
+  uint64_t b = positions_.size() + scalars_[0].size() + scalars_[1].size() + shellIndices_.size() +
+               shellRefs_.size() + shellOther_.size() + shellAdjacency_.size() +
+               accelerationStructureBytes();
   for (int t = 0; t < 4; ++t) b += elements_[t].size() + neighbors_[t].size();
   return b;
 }

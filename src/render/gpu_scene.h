@@ -2,7 +2,9 @@
 // structures. Changing the field or time step uploads scalars only (no rebuild).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "prep/memory_report.h"
@@ -26,7 +28,14 @@ class GpuScene {
   ShellGeometry shellGeometry() const { return shell_; }
 
   // Scalars in this rank's vertex order (prep::gatherScalars); size must equal the vertex count.
+  // Writes the buffer frames read: not while one renders.
   void setScalars(const std::vector<float>& values);
+  // Double buffering for sequences. stageScalars writes a second buffer (allocated on first use)
+  // that frames do not read, so it may run on another thread while a frame renders; swapScalars,
+  // between frames and after stageScalars returned, makes it the one frames read. Neither may run
+  // alongside setScalars, deviceBytes or the other.
+  void stageScalars(std::span<const float> values);
+  void swapScalars();
   // How many times geometry/acceleration structures were built (1 for the scene's life).
   uint64_t geometryBuilds() const { return geometryBuilds_; }
   uint64_t scalarUploads() const { return scalarUploads_; }
@@ -52,10 +61,13 @@ class GpuScene {
   uint64_t numVertices_, shellTriangles_;
   glm::dvec3 origin_;
   mesh::Bounds bounds_;
-  vk::Buffer positions_, scalars_, shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
+  vk::Buffer positions_, shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
+  vk::Buffer scalars_[2];  // frames read scalars_[front_]
+  int front_ = 0;
   vk::Buffer elements_[4], neighbors_[4];
   vk::AccelerationStructure blas_, tlas_;
-  uint64_t geometryBuilds_ = 0, scalarUploads_ = 0;
+  uint64_t geometryBuilds_ = 0;
+  std::atomic<uint64_t> scalarUploads_{0};
 };
 
 }  // namespace sm::render

@@ -1,4 +1,6 @@
-// reference_check MESH FIELD IMAGE.pfm W H STEP UNIT LO HI COLORMAP ex ey ez ax ay az ux uy uz fovy [max-rmse]
+// reference_check MESH FIELD IMAGE.pfm W H STEP UNIT LO HI COLORMAP ex ey ez ax ay az ux uy uz fovy
+// [max-rmse]
+//                 [time-step]
 // Renders MESH with the double-precision CPU reference (Grid mode: the same samples as the GPU),
 // composites over black like `render --background 0,0,0`, and compares with IMAGE.
 #include <cstdio>
@@ -32,7 +34,8 @@ int main(int argc, char** argv) {
     const mesh::Field* f = input.findField(argv[2]);
     if (!f) throw std::runtime_error("no such field");
     std::vector<float> values(order.size());
-    for (size_t i = 0; i < order.size(); ++i) values[i] = f->steps[0][order[i]];
+    const size_t timeStep = argc > 22 ? std::strtoul(argv[22], nullptr, 10) : 0;
+    for (size_t i = 0; i < order.size(); ++i) values[i] = f->steps.at(timeStep)[order[i]];
     int w = std::atoi(argv[4]), h = std::atoi(argv[5]);
     scene::TransferFunction tf = scene::makeTransferFunction(argv[10]);
     tf.unitDistance = std::atof(argv[7]);

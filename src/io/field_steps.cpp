@@ -1,0 +1,190 @@
+// Time steps without the mesh: which fields a file has and how many steps each (from the XML
+// headers), and one step of one field decoded on its own. A time series is streamed this way, one
+// step in memory at a time, instead of every step being loaded with the mesh.
+#include <algorithm>
+
+#include "common/error.h"
+#include "common/file_util.h"
+#include "io/array_plan.h"
+#include "io/mesh_io.h"
+#include "io/numeric_array.h"
+#include "io/readers.h"
+#include "io/vtu_arrays.h"
+#include "io/vtu_document.h"
+
+namespace sm::io {
+namespace {
+
+// Fields in the order the loads name them first (the order readMesh adds them in), each with its
+// step count; a gap in the steps is the error a full read gives.
+std::vector<FieldStepCount> countSteps(const std::string& source,
+                                       const std::vector<FieldLoad>& loads) {
+  std::vector<FieldStepCount> fields;
+  std::vector<std::vector<uint64_t>> steps;
+  for (const FieldLoad& l : loads) {
+    auto it = std::find_if(fields.begin(), fields.end(),
+                           [&](const FieldStepCount& f) { return f.name == l.field; });
+    if (it == fields.end()) {
+      fields.push_back({l.field, 0});
+      steps.emplace_back();
+      it = fields.end() - 1;
+    }
+    steps[it - fields.begin()].push_back(l.step);
+  }
+  for (size_t f = 0; f < fields.size(); ++f) {
+    std::sort(steps[f].begin(), steps[f].end());
+    for (uint64_t i = 0; i < steps[f].size(); ++i)
+      if (steps[f][i] != i)
+        throw FileError(source, "point field '", fields[f].name, "' has no values for time step ",
+                        i);
+    fields[f].steps = steps[f].size();
+  }
+  return fields;
+}
+
+// Every step of every field options ask for (ReadOptions::step narrows loads, not the listing).
+std::vector<FieldLoad> planAllSteps(const std::string& source, const std::vector<ArrayInfo>& arrays,
+                                    const ReadOptions& options) {
+  ReadOptions all = options;
+  all.step.reset();
+  all.loadFields = true;
+  return planFields(source, arrays, all);
+}
+
+std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOptions& options) {
+  FileBytes bytes = FileBytes::open(file);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
+  std::vector<VtuPiece> pieces = vtuPieces(doc);
+  return countSteps(file, planAllSteps(file, vtuPointArrays(doc, pieces[0]), options));
+}
+
+// The pieces read together are welded, which needs the same fields and steps in each.
+void checkSameSteps(const std::string& path, const std::string& piece,
+                    const std::vector<FieldStepCount>& first,
+                    const std::vector<FieldStepCount>& other) {
+  for (const FieldStepCount& f : first) {
+    auto it = std::find_if(other.begin(), other.end(),
+                           [&](const FieldStepCount& o) { return o.name == f.name; });
+    if (it == other.end())
+      throw FileError(path, "piece '", piece, "' has no point field '", f.name, "'");
+    if (it->steps != f.steps)
+      throw FileError(path, "piece '", piece, "' has ", it->steps, " time steps of field '", f.name,
+                      "', the first piece ", f.steps);
+  }
+  if (other.size() != first.size())
+    throw FileError(path, "piece '", piece, "' has ", other.size(),
+                    " point fields, the first piece ", first.size());
+}
+
+std::vector<FieldStepCount> pvtuFieldSteps(const std::string& path, const ReadOptions& options) {
+  const std::vector<std::string> files = pvtuPieceFiles(path);
+  std::vector<FieldStepCount> first;
+  bool any = false;
+  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
+    std::vector<FieldStepCount> steps = vtuFieldSteps(files[i], options);
+    if (any) checkSameSteps(path, files[i], first, steps);
+    if (!any) first = std::move(steps);
+    any = true;
+  }
+  return first;
+}
+
+std::vector<FieldStepCount> stepsOfMesh(const mesh::UnstructuredMesh& m) {
+  std::vector<FieldStepCount> fields;
+  for (const mesh::Field& f : m.fields) fields.push_back({f.name, f.numSteps()});
+  return fields;
+}
+
+std::vector<float> vtuFieldStep(const std::string& file, const std::string& field, uint64_t step,
+                                unsigned threads) {
+  FileBytes bytes = FileBytes::open(file);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", threads);
+  std::vector<VtuPiece> pieces = vtuPieces(doc);
+  const std::vector<ArrayInfo> arrays = vtuPointArrays(doc, pieces[0]);
+  ReadOptions one;
+  one.fields = {field};
+  const std::vector<FieldLoad> loads = planFields(file, arrays, one);
+  auto load =
+      std::find_if(loads.begin(), loads.end(), [&](const FieldLoad& l) { return l.step == step; });
+  if (load == loads.end())
+    throw FileError(file, "has no point array '", splitStepName(arrays[loads[0].array].name).base,
+                    "@t", step, "' (field '", field, "' has ", loads.size(),
+                    loads.size() == 1 ? " time step)" : " time steps)");
+  const ArrayInfo& info = arrays[load->array];
+  const std::string what = concat("point array '", info.name, "'");
+  std::vector<float> values;
+  for (const VtuPiece& p : pieces) {
+    pugi::xml_node a = findDataArray(p.node.child("PointData"), info.name);
+    if (!a) throw FileError(file, "a piece lacks the point array '", info.name, "'");
+    std::vector<float> v =
+        toFloats(doc.decode(a, p.numPoints, what, info.components), load->component, threads);
+    values.insert(values.end(), v.begin(), v.end());
+  }
+  return values;
+}
+
+std::vector<float> pvtuFieldStep(const std::string& path, const std::string& field, uint64_t step,
+                                 const ReadOptions& options) {
+  const std::vector<std::string> files = pvtuPieceFiles(path);
+  std::vector<float> values;
+  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
+    std::vector<float> v = vtuFieldStep(files[i], field, step, options.threads);
+    values.insert(values.end(), v.begin(), v.end());
+  }
+  return values;
+}
+
+// Formats without random access to one array: the whole file, keeping one field.
+std::vector<float> wholeReadFieldStep(const std::string& path, const std::string& field,
+                                      uint64_t step, const ReadOptions& options) {
+  ReadOptions o = options;
+  o.fields = {field};
+  o.loadFields = true;
+  o.step.reset();
+  mesh::UnstructuredMesh m = readMesh(path, o);
+  mesh::Field* f = m.fields.empty() ? nullptr : &m.fields[0];
+  if (!f || step >= f->numSteps())
+    throw FileError(path, "point field '", field, "' has ", f ? f->numSteps() : 0,
+                    " time steps, not step ", step);
+  return std::move(f->steps[step]);
+}
+
+std::vector<float> mapPoints(const std::string& path, std::vector<float> values,
+                             std::span<const uint32_t> pointMap) {
+  if (pointMap.empty()) return values;
+  std::vector<float> out(pointMap.size());
+  for (size_t i = 0; i < pointMap.size(); ++i) {
+    if (pointMap[i] >= values.size())
+      throw FileError(path, "has ", values.size(),
+                      " points in the pieces read, fewer than when its mesh was read");
+    out[i] = values[pointMap[i]];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<FieldStepCount> listFieldSteps(const std::string& path, const ReadOptions& options) {
+  const std::string ext = fileExtension(path);
+  if (ext == ".vtu") return vtuFieldSteps(path, options);
+  if (ext == ".pvtu") return pvtuFieldSteps(path, options);
+  ReadOptions o = options;
+  o.step.reset();
+  o.loadFields = true;
+  return stepsOfMesh(readMesh(path, o));
+}
+
+std::vector<float> readFieldStep(const std::string& path, const std::string& field, uint64_t step,
+                                 const ReadOptions& options, std::span<const uint32_t> pointMap) {
+  const std::string ext = fileExtension(path);
+  std::vector<float> values;
+  if (ext == ".vtu")
+    values = vtuFieldStep(path, field, step, options.threads);
+  else if (ext == ".pvtu")
+    values = pvtuFieldStep(path, field, step, options);
+  else
+    values = wholeReadFieldStep(path, field, step, options);
+  return mapPoints(path, std::move(values), pointMap);
+}
+
+}  // namespace sm::io

@@ -1,0 +1,45 @@
+#include "io/vtu_arrays.h"
+
+#include <string>
+
+#include "common/error.h"
+
+namespace sm::io {
+
+std::vector<VtuPiece> vtuPieces(const VtuDocument& doc) {
+  const std::string& src = doc.source();
+  pugi::xml_node grid = doc.root().child("UnstructuredGrid");
+  if (!grid) throw FileError(src, "has no <UnstructuredGrid> element");
+  std::vector<VtuPiece> pieces;
+  uint64_t points = 0, cells = 0;
+  for (pugi::xml_node p : grid.children("Piece")) {
+    VtuPiece piece{p, doc.count(p, "NumberOfPoints"), doc.count(p, "NumberOfCells"), points, cells};
+    points += piece.numPoints;
+    cells += piece.numCells;
+    pieces.push_back(piece);
+  }
+  if (pieces.empty()) throw FileError(src, "has no <Piece> element");
+  return pieces;
+}
+
+pugi::xml_node findDataArray(pugi::xml_node parent, std::string_view name) {
+  for (pugi::xml_node a : parent.children("DataArray"))
+    if (name == a.attribute("Name").value()) return a;
+  return {};
+}
+
+std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& piece) {
+  pugi::xml_node pd = piece.node.child("PointData");
+  std::string_view globalIds = pd.attribute("GlobalIds").value();
+  std::string_view pedigreeIds = pd.attribute("PedigreeIds").value();
+  std::vector<ArrayInfo> infos;
+  for (pugi::xml_node a : pd.children("DataArray")) {
+    std::string_view name = a.attribute("Name").value();
+    if (!scalarTypeFromXml(a.attribute("type").value())) continue;  // strings and the like
+    bool id = name == globalIds || name == pedigreeIds || isBookkeepingArray(name);
+    infos.push_back({std::string(name), doc.components(a, concat("point array '", name, "'")), id});
+  }
+  return infos;
+}
+
+}  // namespace sm::io

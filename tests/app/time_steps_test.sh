@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Time steps streamed from disk (issue 6, item 1), run by ctest with
+#   time_steps_test.sh SHELLMARCH IMAGE_DIFF REFERENCE_CHECK WORKDIR
+# `render --time all` on a multi-step .pvtu under 1 and 3 ranks writes every frame; each frame
+# equals the single render of its step and the CPU reference of that step; the statistics hold
+# per-frame times, fps over runs and the wait for the prefetch, and geometry is built once per rank.
+set -euo pipefail
+sm=$1 diff=$2 refcheck=$3 work=$4
+mkdir -p "$work"
+cd "$work"
+rm -f ./*.pfm ./*.json
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
+fail() { echo "FAIL: $*"; exit 1; }
+
+W=64 H=48 STEP=0.02 UNIT=0.3 LO=0 HI=1 CMAP=viridis
+EYE=2.2,-1.6,1.4 AT=0.5,0.5,0.5 UP=0,0,1 FOVY=35
+view=(--field vortex --size ${W}x${H} --step $STEP --unit-distance $UNIT --range $LO,$HI --colormap $CMAP
+      --eye $EYE --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1)
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 5 --steps 4 --out steps.pvtu
+
+# Single renders of each step, checked against the CPU reference of that step (an independent
+# reader: readMesh with every step in memory); the vortex moves, so the steps differ.
+for k in 0 1 2 3; do
+  "$sm" render steps.pvtu "${view[@]}" --time $k --out single_$k.pfm
+  "$refcheck" steps.pvtu vortex single_$k.pfm $W $H $STEP $UNIT $LO $HI $CMAP ${EYE//,/ } ${AT//,/ } \
+    ${UP//,/ } $FOVY 0.0039 $k
+done
+"$diff" single_0.pfm single_3.pfm --min-max-abs 0.05
+
+json() {  # json FILE PYTHON-EXPRESSION-ON-j: fails unless true
+  python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
+    fail "$1: $2"
+}
+
+for n in 1 3; do
+  mpi $n "$sm" render steps.pvtu "${view[@]}" --time all --stats --stats-json seq$n.json \
+    --out seq$n.pfm | tee seq$n.log
+  for k in 0 1 2 3; do "$diff" single_$k.pfm seq${n}_000$k.pfm --max-abs 1e-3; done
+  grep -q "fps mean over runs" seq$n.log || fail "no fps line in seq$n.log"
+  s=seq$n.json
+  json $s "j['validation_errors'] == 0 and len(j['frames']) == 4"
+  json $s "[f['step'] for f in j['sequence']['per_run'][0]['frames']] == [0, 1, 2, 3]"
+  json $s "all(f['frame_ms'] >= f['render_ms'] > 0 for f in j['sequence']['per_run'][0]['frames'])"
+  json $s "j['sequence']['fps_mean'] > 0 and j['sequence']['prefetch'] and j['sequence']['runs'] == 1"
+  json $s "'scalar_wait_ms_mean' in j['sequence'] and 'prefetch_hidden' in j['sequence']"
+  json $s "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1}"
+  json $s "j['sequence']['scalar_uploads'] == {'min': 4, 'max': 4}"
+done
+
+# Several runs without prefetching: fps per run, images written once and unchanged.
+mpi 3 "$sm" render steps.pvtu "${view[@]}" --time all --repeat 2 --no-prefetch --stats-json rep.json \
+  --out rep.pfm
+for k in 0 1 2 3; do "$diff" single_$k.pfm rep_000$k.pfm --max-abs 1e-3; done
+json rep.json "j['sequence']['runs'] == 2 and len(j['sequence']['per_run']) == 2"
+json rep.json "not j['sequence']['prefetch'] and j['sequence']['frames'] == 8"
+json rep.json "j['sequence']['fps_stddev'] >= 0 and j['sequence']['fps_min'] <= j['sequence']['fps_max']"
+json rep.json "j['sequence']['geometry_builds']['max'] == 1 and j['sequence']['scalar_uploads']['max'] == 8"
+
+# Pieces with fewer steps: one rank per piece, piece 1 holds 2 steps. Its rank holds its last
+# step for steps 2 and 3 (2 uploads), the other changes every frame.
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 2 --steps 4 --out four.pvtu
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 2 --steps 2 --out two.pvtu
+cp two/two_1.vtu four/four_1.vtu
+mpi 2 "$sm" render four.pvtu "${view[@]}" --time all --stats-json mixed.json --out mixed.pfm
+"$diff" single_0.pfm mixed_0000.pfm --max-abs 1e-3
+"$diff" mixed_0002.pfm mixed_0003.pfm --min-max-abs 0.01  # the 4-step piece still moves
+json mixed.json "j['sequence']['scalar_uploads'] == {'min': 2, 'max': 4}"
+echo "time steps: all checks passed"
