@@ -3,17 +3,21 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
+#include "app/memory_advice.h"
 #include "app/rank_pipeline.h"
 #include "app/render_stats.h"
 #include "common/error.h"
+#include "common/fault_injection.h"
 #include "common/log.h"
 #include "common/timer.h"
 #include "render/renderer.h"
 #include "scene/image.h"
 #include "vk/context.h"
+#include "vk/vk_error.h"
 
 namespace sm::app {
 namespace {
@@ -106,23 +110,38 @@ void runRender(const RenderJob& job, Collectives& coll) {
   vk::ContextOptions vo;
   vo.device = job.device;
   vk::Context ctx(vo);
-  render::GpuScene gpu(ctx, prepared.rank);
-  comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
-  render::Renderer renderer(ctx, gpu, compositor);
-
-  StatsReport report(job, coll);
-  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu, ctx.deviceName(), s);
-  for (uint64_t step : steps) {
-    gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, available - 1)));
-    render::FrameResult frame = renderer.render(s);
-    report.addFrame(step, frame, renderer);
-    if (coll.rank() == 0) {
-      scene::Image img(job.width, job.height);
-      img.pixels = std::move(frame.pixels);
-      scene::writePng(framePath(job.out, step, steps.size() > 1), img, job.background);
-    }
+  // Out of device memory becomes a message that says what would fit, not a Vulkan call's name.
+  std::unique_ptr<render::GpuScene> scene;
+  try {
+    scene = std::make_unique<render::GpuScene>(ctx, prepared.rank);
+  } catch (const vk::DeviceMemoryError& e) {
+    throw Error(sceneMemoryAdvice(e, ctx, prepared.rank, coll.size()));
   }
-  report.finish(ctx.validationErrors());
+  render::GpuScene& gpu = *scene;
+  try {
+    comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
+    render::Renderer renderer(ctx, gpu, compositor);
+
+    StatsReport report(job, coll);
+    report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
+                    ctx.deviceName(), s);
+    for (size_t i = 0; i < steps.size(); ++i) {
+      const uint64_t step = steps[i];
+      fault::atFrame(i);
+      gpu.setScalars(fieldStep(share.mesh, prepared.rank, field, std::min(step, available - 1)));
+      render::FrameResult frame = renderer.render(s);
+      report.addFrame(step, frame, renderer);
+      if (coll.rank() == 0) {
+        scene::Image img(job.width, job.height);
+        img.pixels = std::move(frame.pixels);
+        scene::writePng(framePath(job.out, step, steps.size() > 1), img, job.background);
+      }
+    }
+    report.finish(ctx.validationErrors());
+  } catch (const vk::DeviceMemoryError& e) {
+    throw Error(
+        listMemoryAdvice(e, ctx, gpu.deviceBytes(), job.width, job.height, job.lists, coll.size()));
+  }
 }
 
 }  // namespace sm::app

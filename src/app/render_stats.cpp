@@ -6,6 +6,7 @@
 #include "app/render_job.h"
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/log.h"
 #include "prep/memory_report.h"
 
 namespace sm::app {
@@ -107,6 +108,20 @@ void StatsReport::finish(uint64_t validationErrors) {
                   (unsigned long long)fr["samples"].get<uint64_t>(), (unsigned long long)fr["element_steps"].get<uint64_t>());
     }
   }
+  // Fixed-length lists lose what does not fit (dropped or merged out of order): the image is
+  // then approximate, which must be said whether or not --stats was asked for.
+  uint64_t overflow = 0, overflowFrames = 0;
+  for (const auto& fr : json_["frames"]) {
+    overflow += fr["fragment_overflow"].get<uint64_t>();
+    overflowFrames += fr["fragment_overflow"].get<uint64_t>() > 0;
+  }
+  json_["fragment_overflow"] = overflow;
+  if (coll_.rank() == 0 && overflow > 0)
+    log::warning(
+        "fixed-length fragment lists (--k ", job_.lists.fixedK, ") overflowed: ", overflow,
+        " fragments ", job_.lists.mode == comp::ListMode::FixedMerge ? "merged" : "dropped", " in ",
+        overflowFrames, " of ", json_["frames"].size(),
+        " frame(s), so the image is approximate; use a larger --k, or --lists two-pass (exact)");
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";
     writeBytesAtomically(job_.statsJson, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});

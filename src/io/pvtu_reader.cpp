@@ -13,8 +13,8 @@
 namespace sm::io {
 namespace {
 
-std::vector<std::string> pieceFiles(const std::string& path) {
-  FileBytes bytes = FileBytes::open(path);
+std::vector<std::string> pieceFiles(const std::string& path, const OpenFile& open) {
+  FileBytes bytes = open(path);
   VtuDocument doc(bytes, path, "PUnstructuredGrid");
   pugi::xml_node grid = doc.root().child("PUnstructuredGrid");
   if (!grid) throw FileError(path, "has no <PUnstructuredGrid> element");
@@ -48,7 +48,7 @@ std::vector<int> chosenPieces(const std::string& path, int count, const ReadOpti
 }  // namespace
 
 int countPvtuPieces(const std::string& path) {
-  return static_cast<int>(pieceFiles(path).size());
+  return static_cast<int>(pieceFiles(path, &FileBytes::open).size());
 }
 
 namespace {
@@ -81,15 +81,17 @@ uint64_t declaredCells(const std::string& file) {
 
 std::vector<uint64_t> pieceCellCounts(const std::string& path) {
   std::vector<uint64_t> counts;
-  for (const std::string& file : pieceFiles(path)) counts.push_back(declaredCells(file));
+  for (const std::string& file : pieceFiles(path, &FileBytes::open))
+    counts.push_back(declaredCells(file));
   return counts;
 }
 
-mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options) {
-  const std::vector<std::string> files = pieceFiles(path);
+mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
+                                const OpenFile& open) {
+  const std::vector<std::string> files = pieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
   for (int i : chosenPieces(path, static_cast<int>(files.size()), options))
-    pieces.push_back(readVtu(FileBytes::open(files[i]), files[i], options, i));
+    pieces.push_back(readVtu(open(files[i]), files[i], options, i));
   return weldPieces(path, std::move(pieces));
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -16,7 +17,12 @@ namespace sm::io {
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options,
                                std::optional<int32_t> pieceCluster = std::nullopt);
-mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options);
+// How readPvtu gets the bytes of the index and of each piece: FileBytes::open, or an in-memory
+// lookup for fuzzers (a .pvtu is several files, and a fuzzer must not read whatever a mutated
+// Source attribute names on the machine).
+using OpenFile = std::function<FileBytes(const std::string& path)>;
+mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
+                                const OpenFile& open = &FileBytes::open);
 int countPvtuPieces(const std::string& path);
 mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,
                                      const ReadOptions& options);
