@@ -60,6 +60,9 @@ for t in "${targets[@]}"; do
   regressions=tests/fuzz/regressions/$t
   dirs=("$corpus" "$seeds/$t")
   [ -d "$regressions" ] && dirs+=("$regressions")
+  # Keywords of the format, where there is a grammar to speak of (tests/fuzz/dict/).
+  options=()
+  [ -f "tests/fuzz/dict/$t.dict" ] && options+=(-dict="tests/fuzz/dict/$t.dict")
   log=$build/fuzz-$t.log
   echo "fuzz: $t for ${seconds}s"
   # -max_len 64 KiB: every format's structure fits, and larger seeds (can.vtu, post.vtk) are read
@@ -69,7 +72,7 @@ for t in "${targets[@]}"; do
   set +e
   timed "fuzz_$t" "$build/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -max_len=65536 -malloc_limit_mb=256 \
     -rss_limit_mb=2048 -timeout=30 -print_final_stats=1 -artifact_prefix="$artifacts/" \
-    "${dirs[@]}" >"$log" 2>&1
+    "${options[@]}" "${dirs[@]}" >"$log" 2>&1
   status=$?
   set -e
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
