@@ -137,6 +137,39 @@ AccelerationStructure AccelerationStructure::buildBoxes(const Context& ctx, cons
   return buildBottomLevel(ctx, geom, count, compact, name, &AccelerationStructure::create);
 }
 
+VkDeviceSize AccelerationStructure::bottomLevelBuildBytes(const Context& ctx, bool boxes,
+                                                          uint32_t count, uint32_t vertexCount) {
+  // The size query ignores every device address, so the geometry needs none.
+  VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  if (boxes) {
+    geom.geometryType = VK_GEOMETRY_TYPE_AABBS_KHR;
+    geom.geometry.aabbs.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR;
+    geom.geometry.aabbs.stride = sizeof(VkAabbPositionsKHR);
+  } else {
+    geom.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+    geom.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+    auto& tri = geom.geometry.triangles;
+    tri.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
+    tri.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+    tri.vertexStride = 3 * sizeof(float);
+    tri.maxVertex = vertexCount ? vertexCount - 1 : 0;
+    tri.indexType = VK_INDEX_TYPE_UINT32;
+  }
+  VkAccelerationStructureBuildGeometryInfoKHR build{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  build.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+  build.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR;
+  build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  build.geometryCount = 1;
+  build.pGeometries = &geom;
+  VkAccelerationStructureBuildSizesInfoKHR sizes{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  ctx.fn().getAccelerationStructureBuildSizes(
+      ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build, &count, &sizes);
+  return sizes.accelerationStructureSize + sizes.buildScratchSize;
+}
+
 AccelerationStructure AccelerationStructure::buildInstance(const Context& ctx,
                                                            const AccelerationStructure* blas,
                                                            const std::string& name) {

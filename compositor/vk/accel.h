@@ -33,6 +33,12 @@ class AccelerationStructure {
   static AccelerationStructure buildInstance(const Context& ctx, const AccelerationStructure* blas,
                                              const std::string& name);
 
+  // Bytes a bottom-level build needs at its peak (structure plus scratch) as the device reports
+  // them, allocating nothing: over `count` boxes, or over `count` triangles of `vertexCount`
+  // vertices. Out-of-memory messages compare it with what the device has.
+  static VkDeviceSize bottomLevelBuildBytes(const Context& ctx, bool boxes, uint32_t count,
+                                            uint32_t vertexCount);
+
   // An empty structure of the given type and size, with its storage (used by the builders).
   static AccelerationStructure create(const Context& ctx, VkAccelerationStructureTypeKHR type,
                                       VkDeviceSize size, const std::string& name);

@@ -1,7 +1,9 @@
 #include "vk/buffer.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "vk/vk_error.h"
 
@@ -9,6 +11,18 @@ namespace sm::vk {
 namespace {
 constexpr VkDeviceSize kMinSize = 16;
 constexpr VkDeviceSize kStagingChunk = 64ull << 20;
+
+std::string bytesText(uint64_t bytes) {
+  if (bytes == UINT64_MAX) return "unlimited";
+  char text[32];
+  if (bytes >= (uint64_t(1) << 30))
+    std::snprintf(text, sizeof text, "%.2f GiB", double(bytes) / double(1 << 30));
+  else if (bytes >= (uint64_t(1) << 20))
+    std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1 << 20));
+  else
+    std::snprintf(text, sizeof text, "%.1f KiB", double(bytes) / 1024.0);
+  return text;
+}
 }  // namespace
 
 Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
@@ -52,15 +66,28 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
   ai.pNext = &flags;
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = type;
+  auto outOfMemory = [&](VkResult r) {
+    const uint64_t used = ctx.deviceMemoryInUse();
+    return DeviceMemoryError("cannot allocate " + bytesText(req.size) + " of device memory for " +
+                                 name + " (" + bytesText(used) + " in use, " +
+                                 bytesText(ctx.deviceMemoryLimit()) + " usable)",
+                             r, req.size, used);
+  };
+  if (!ctx.reserveDeviceMemory(req.size)) throw outOfMemory(VK_ERROR_OUT_OF_DEVICE_MEMORY);
   VkDeviceMemory mem;
   VkResult r = vkAllocateMemory(dev, &ai, nullptr, &mem);
-  if (r != VK_SUCCESS)
-    throw DeviceMemoryError(
-        "cannot allocate " + std::to_string(req.size >> 20) + " MiB of device memory for " + name,
-        r);
+  if (r != VK_SUCCESS) {
+    ctx.releaseDeviceMemory(req.size);
+    throw outOfMemory(r);
+  }
   memory_ = DeviceHandle<VkDeviceMemory>(dev, mem, vkFreeMemory);
   ctx.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, uint64_t(mem), name);
-  SM_VK(vkBindBufferMemory(dev, buf, mem, 0));
+  VkResult bound = vkBindBufferMemory(dev, buf, mem, 0);
+  if (bound != VK_SUCCESS) {
+    ctx.releaseDeviceMemory(req.size);  // no destructor runs for a constructor that throws
+    SM_VK(bound);
+  }
+  reserved_ = req.size;
 
   VkMemoryPropertyFlags got;
   {
@@ -71,7 +98,13 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
   bool mappable =
       (got & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (got & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   if (use == MemoryUse::Device && ctx.forceStaging()) mappable = false;
-  if (mappable) SM_VK(vkMapMemory(dev, mem, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  if (mappable) {
+    VkResult m = vkMapMemory(dev, mem, 0, VK_WHOLE_SIZE, 0, &mapped_);
+    if (m != VK_SUCCESS) {
+      ctx.releaseDeviceMemory(std::exchange(reserved_, 0));
+      SM_VK(m);
+    }
+  }
 
   VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
   info.buffer = buf;
@@ -81,6 +114,8 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
 Buffer& Buffer::operator=(Buffer&& o) noexcept {
   if (this != &o) {
     if (mapped_ && memory_) vkUnmapMemory(ctx_->device(), memory_.get());
+    if (reserved_) ctx_->releaseDeviceMemory(reserved_);
+    reserved_ = std::exchange(o.reserved_, 0);
     buffer_ = std::move(o.buffer_);
     memory_ = std::move(o.memory_);
     ctx_ = o.ctx_;
@@ -94,6 +129,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 
 Buffer::~Buffer() {
   if (mapped_ && memory_) vkUnmapMemory(ctx_->device(), memory_.get());
+  if (reserved_) ctx_->releaseDeviceMemory(reserved_);
 }
 
 void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {

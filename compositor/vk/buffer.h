@@ -60,6 +60,7 @@ class Buffer {
   VkDeviceAddress address_ = 0;
   void* mapped_ = nullptr;
   std::string name_;
+  VkDeviceSize reserved_ = 0;  // counted against the context's device memory limit
 };
 
 // Standard usage for storage buffers reached by address, that can also be copied to and from.

@@ -1,10 +1,12 @@
 #include "vk/context.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
 #include "vk/vk_error.h"
 
@@ -114,6 +116,32 @@ bool instanceExtensionAvailable(const char* name) {
   vkEnumerateInstanceExtensionProperties(nullptr, &n, ext.data());
   return std::any_of(ext.begin(), ext.end(),
                      [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+// The largest device-local heap: what one rank's buffers can hold at most.
+uint64_t deviceLocalBytes(const VkPhysicalDeviceMemoryProperties& mp) {
+  uint64_t most = 0;
+  for (uint32_t i = 0; i < mp.memoryHeapCount; ++i)
+    if (mp.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      most = std::max<uint64_t>(most, mp.memoryHeaps[i].size);
+  return most ? most : UINT64_MAX;
+}
+
+// "1048576", "64K", "512M", "2G".
+uint64_t parseByteCount(const char* what, const char* text) {
+  char* end = nullptr;
+  errno = 0;
+  unsigned long long v = std::strtoull(text, &end, 10);
+  int shift = 0;
+  static const char* units = "KkMmGg";
+  if (end != text && *end && !end[1] && std::strchr(units, *end)) {
+    shift = 10 * int(1 + (std::strchr(units, *end) - units) / 2);
+    ++end;
+  }
+  if (end == text || *end || errno || *text == '-' || v > (UINT64_MAX >> shift))
+    throw std::invalid_argument(std::string(what) + ": '" + text +
+                                "' is not a byte count (e.g. 268435456, 256M, 2G)");
+  return uint64_t(v) << shift;
 }
 
 VkInstance plainInstance() {
@@ -276,6 +304,9 @@ void Context::pickDevice(const ContextOptions& o) {
   physical_ = devs[best];
   vkGetPhysicalDeviceProperties(physical_, &props_);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memProps_);
+  memoryLimit_ = deviceLocalBytes(memProps_);
+  if (const char* cap = std::getenv("SHELLMARCH_DEVICE_MEMORY_LIMIT"); cap && *cap)
+    memoryLimit_ = std::min(memoryLimit_, parseByteCount("SHELLMARCH_DEVICE_MEMORY_LIMIT", cap));
   VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   p2.pNext = &sub;
@@ -362,6 +393,18 @@ uint32_t Context::memoryType(uint32_t bits, VkMemoryPropertyFlags want,
     }
   }
   throw VulkanError("no suitable memory type", VK_ERROR_FEATURE_NOT_PRESENT);
+}
+
+bool Context::reserveDeviceMemory(uint64_t bytes) const {
+  uint64_t used = memoryInUse_.load();
+  do {
+    if (bytes > memoryLimit_ - std::min(used, memoryLimit_)) return false;
+  } while (!memoryInUse_.compare_exchange_weak(used, used + bytes));
+  return true;
+}
+
+void Context::releaseDeviceMemory(uint64_t bytes) const {
+  memoryInUse_ -= bytes;
 }
 
 void Context::setName(VkObjectType type, uint64_t handle, const std::string& name) const {

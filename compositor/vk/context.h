@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -74,6 +75,16 @@ class Context {
 
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags want,
                       VkMemoryPropertyFlags avoid = 0) const;
+
+  // Device memory this context may hold at once: the largest device-local heap, or less where
+  // SHELLMARCH_DEVICE_MEMORY_LIMIT (bytes, or with a K, M or G suffix) says so. The variable lets
+  // tests run a renderer out of memory on any device; out-of-memory messages compare what a
+  // rank needs with this.
+  uint64_t deviceMemoryLimit() const { return memoryLimit_; }
+  uint64_t deviceMemoryInUse() const { return memoryInUse_; }
+  // Buffer's bookkeeping: false (nothing reserved) when `bytes` more would pass the limit.
+  bool reserveDeviceMemory(uint64_t bytes) const;
+  void releaseDeviceMemory(uint64_t bytes) const;
   void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
   // Records commands into a one-time command buffer, submits and waits. Thread-safe: threads
@@ -113,6 +124,8 @@ class Context {
   bool validation_ = false, debugUtils_ = false, float64_ = false, rayQuery_ = false;
   bool forceStaging_ = false;
   uint32_t subgroupSize_ = 1;
+  uint64_t memoryLimit_ = UINT64_MAX;
+  mutable std::atomic<uint64_t> memoryInUse_{0};
   std::atomic<uint64_t> errors_{0}, warnings_{0};
   mutable std::mutex messagesMutex_;
   mutable std::mutex submitMutex_;  // command pool and queue

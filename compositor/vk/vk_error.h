@@ -2,6 +2,7 @@
 // device memory is its own type so that callers can say what would fit instead.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +23,15 @@ class VulkanError : public std::runtime_error {
 
 class DeviceMemoryError : public VulkanError {
  public:
-  using VulkanError::VulkanError;
+  DeviceMemoryError(const std::string& what, VkResult r, uint64_t requested = 0, uint64_t inUse = 0)
+      : VulkanError(what, r), requested_(requested), inUse_(inUse) {}
+  // Bytes of the allocation that failed, and the bytes the context held then (0 when a driver
+  // call other than an allocation reported it): callers that unwind past the buffers still know.
+  uint64_t requested() const { return requested_; }
+  uint64_t inUse() const { return inUse_; }
+
+ private:
+  uint64_t requested_, inUse_;
 };
 
 [[noreturn]] void throwVkError(const char* expr, VkResult r, const char* file, int line);

@@ -3,21 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 #include "app/frame_extras.h"
+#include "app/memory_advice.h"
 #include "app/rank_pipeline.h"
 #include "app/render_setup.h"
 #include "app/render_stats.h"
 #include "app/sequence_stats.h"
 #include "app/step_source.h"
 #include "common/error.h"
+#include "common/fault_injection.h"
 #include "common/file_util.h"
 #include "common/timer.h"
 #include "render/renderer.h"
 #include "render/scalar_prefetch.h"
 #include "scene/image.h"
 #include "vk/context.h"
+#include "vk/vk_error.h"
 
 namespace sm::app {
 namespace {
@@ -109,6 +113,7 @@ void renderFrames(const Frames& f) {
     f.renderer.render(f.settings);
   }
   for (size_t i = 0; i < total; ++i) {
+    fault::atFrame(i);
     Timer frameTimer;
     render::ScalarSwitch scalars;
     if (prefetcher.pending())
@@ -153,16 +158,28 @@ void runRender(const RenderJob& job, Collectives& coll) {
       prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
   const double prepSeconds = prepTimer.seconds();
   vk::Context ctx(contextOptions(job));
-  render::GpuScene gpu(ctx, prepared.rank);
-  comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
-  render::Renderer renderer(ctx, gpu, compositor);
+  // Out of device memory becomes a message that says what would fit, not a Vulkan call's name.
+  std::unique_ptr<render::GpuScene> scene;
+  try {
+    scene = std::make_unique<render::GpuScene>(ctx, prepared.rank);
+  } catch (const vk::DeviceMemoryError& e) {
+    throw Error(sceneMemoryAdvice(e, ctx, prepared.rank, coll.size()));
+  }
+  render::GpuScene& gpu = *scene;
+  try {
+    comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
+    render::Renderer renderer(ctx, gpu, compositor);
 
-  StatsReport report(job, coll);
-  report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
-                  ctx.deviceName(), s);
-  renderFrames(
-      {job, steps, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
-  report.finish(ctx.validationErrors());
+    StatsReport report(job, coll);
+    report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
+                    ctx.deviceName(), s);
+    renderFrames(
+        {job, steps, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
+    report.finish(ctx.validationErrors());
+  } catch (const vk::DeviceMemoryError& e) {
+    throw Error(
+        listMemoryAdvice(e, ctx, gpu.deviceBytes(), job.width, job.height, job.lists, coll.size()));
+  }
 }
 
 }  // namespace sm::app

@@ -7,6 +7,7 @@
 #include "app/sequence_stats.h"
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/log.h"
 #include "prep/memory_report.h"
 
 namespace sm::app {
@@ -169,6 +170,20 @@ void StatsReport::finish(uint64_t validationErrors) {
     for (const auto& fr : json_["frames"]) printFrame(fr);
     if (json_.contains("sequence")) printSequenceSummary(json_["sequence"]);
   }
+  // Fixed-length lists lose what does not fit (dropped or merged out of order): the image is
+  // then approximate, which must be said whether or not --stats was asked for.
+  uint64_t overflow = 0, overflowFrames = 0;
+  for (const auto& fr : json_["frames"]) {
+    overflow += fr["fragment_overflow"].get<uint64_t>();
+    overflowFrames += fr["fragment_overflow"].get<uint64_t>() > 0;
+  }
+  json_["fragment_overflow"] = overflow;
+  if (coll_.rank() == 0 && overflow > 0)
+    log::warning(
+        "fixed-length fragment lists (--k ", job_.lists.fixedK, ") overflowed: ", overflow,
+        " fragments ", job_.lists.mode == comp::ListMode::FixedMerge ? "merged" : "dropped", " in ",
+        overflowFrames, " of ", json_["frames"].size(),
+        " frame(s), so the image is approximate; use a larger --k, or --lists two-pass (exact)");
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";
     writeBytesAtomically(job_.statsJson,

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "common/fault_injection.h"
 
 namespace sm {
 namespace fs = std::filesystem;
@@ -61,8 +62,19 @@ void writeBytesAtomically(const std::string& path, std::span<const uint8_t> byte
   writeFileAtomically(path, [&](const std::string& tmp) {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw FileError(path, "cannot create: ", std::strerror(errno));
-    size_t n = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
-    bool ok = n == bytes.size() && std::fflush(f) == 0;
+    // Written in two halves so that fault injection can stop a process between them, with a
+    // partial file on disk under the temporary name.
+    const size_t half = bytes.size() / 2;
+    size_t n = half ? std::fwrite(bytes.data(), 1, half, f) : 0;
+    bool ok = n == half && std::fflush(f) == 0;
+    try {
+      fault::atWrite(path);
+    } catch (...) {
+      std::fclose(f);
+      throw;
+    }
+    if (ok && bytes.size() > half) n += std::fwrite(bytes.data() + half, 1, bytes.size() - half, f);
+    ok = ok && n == bytes.size() && std::fflush(f) == 0;
     ok = (std::fclose(f) == 0) && ok;
     if (!ok) throw FileError(path, "write failed (disk full?)");
   });

@@ -24,7 +24,7 @@ Hasher& Hasher::bytes(const void* data, size_t size) {
     h_ = mix(h_ ^ w) + 0x632BE59BD9B4E019ull;
   }
   uint64_t tail = 0;
-  std::memcpy(&tail, p + i, size - i);
+  if (size > i) std::memcpy(&tail, p + i, size - i);  // an empty span's data() may be null
   h_ = mix(h_ ^ tail ^ (uint64_t(size - i) << 56));
   n_ += size;
   return *this;

@@ -13,7 +13,11 @@
 namespace sm::io {
 
 std::vector<std::string> pvtuPieceFiles(const std::string& path) {
-  FileBytes bytes = FileBytes::open(path);
+  return pvtuPieceFiles(path, &FileBytes::open);
+}
+
+std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open) {
+  FileBytes bytes = open(path);
   VtuDocument doc(bytes, path, "PUnstructuredGrid");
   pugi::xml_node grid = doc.root().child("PUnstructuredGrid");
   if (!grid) throw FileError(path, "has no <PUnstructuredGrid> element");
@@ -82,11 +86,12 @@ std::vector<uint64_t> pieceCellCounts(const std::string& path) {
   return counts;
 }
 
-mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options) {
-  const std::vector<std::string> files = pvtuPieceFiles(path);
+mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
+                                const OpenFile& open) {
+  const std::vector<std::string> files = pvtuPieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
-    pieces.push_back(readVtu(FileBytes::open(files[i]), files[i], options, i));
+    pieces.push_back(readVtu(open(files[i]), files[i], options, i));
   // Pieces loaded with one step each cannot show the weld that their step counts differ.
   if (options.step && options.loadFields && pieces.size() > 1) listFieldSteps(path, options);
   return weldPieces(path, std::move(pieces));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,10 +18,16 @@ namespace sm::io {
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options,
                                std::optional<int32_t> pieceCluster = std::nullopt);
-mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options);
+// How readPvtu gets the bytes of the index and of each piece: FileBytes::open, or an in-memory
+// lookup for fuzzers (a .pvtu is several files, and a fuzzer must not read whatever a mutated
+// Source attribute names on the machine).
+using OpenFile = std::function<FileBytes(const std::string& path)>;
+mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
+                                const OpenFile& open = &FileBytes::open);
 int countPvtuPieces(const std::string& path);
 // The piece files a .pvtu names (paths resolved against its folder).
 std::vector<std::string> pvtuPieceFiles(const std::string& path);
+std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open);
 // options.pieces checked against `count` and sorted; every piece when empty.
 std::vector<int> pvtuChosenPieces(const std::string& path, int count, const ReadOptions& options);
 mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,

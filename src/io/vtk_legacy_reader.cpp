@@ -299,6 +299,9 @@ mesh::UnstructuredMesh LegacyReader::build() {
     std::vector<int64_t> ghost;
     for (const auto& a : cellArrays_)
       if (a.name == "vtkGhostType" && a.data.data) ghost = toInt64(a.data, src_, "vtkGhostType");
+    // CELL_DATA sized the array for the CELLS before it; a later CELLS section may differ.
+    if (!ghost.empty() && ghost.size() != numCells_)
+      throw FileError(src_, "vtkGhostType has ", ghost.size(), " values for ", numCells_, " cells");
     if (isFloatType(conn_.type)) throw FileError(src_, "cell ids must be integers");
     if (!newLayout_) {
       visitArray(conn_, [&](auto tag, auto swap) {

@@ -1,5 +1,8 @@
 #include "prep/prepare.h"
 
+#include <cfloat>
+#include <cmath>
+
 #include "common/check.h"
 #include "common/error.h"
 #include "common/timer.h"
@@ -17,6 +20,10 @@ std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalF
   positions.resize(3 * order.size());
   for (size_t i = 0; i < order.size(); ++i) {
     glm::dvec3 p = mesh.points[order[i]] - frame.origin;
+    // Readers accept any finite double; the device works in float around the frame's origin.
+    if (!(std::abs(p.x) <= FLT_MAX && std::abs(p.y) <= FLT_MAX && std::abs(p.z) <= FLT_MAX))
+      throw Error(mesh.source, ": point ", order[i], " is too far from the mesh's centre for ",
+                  "single precision (coordinates must stay within 3.4e38 of it)");
     positions[3 * i] = float(p.x);
     positions[3 * i + 1] = float(p.y);
     positions[3 * i + 2] = float(p.z);

@@ -19,8 +19,10 @@ uint64_t spread21(uint64_t x) {
 
 uint64_t quantise(double v, double lo, double hi) {
   if (!(hi > lo)) return 0;
-  double q = (v - lo) / (hi - lo) * 2097151.0;
-  return uint64_t(std::clamp(q, 0.0, 2097151.0));
+  // Halved (exactly), so that bounds wider than the largest double, such as -1e308 .. 1e308, give
+  // a finite ratio; a NaN left over must not reach the integer conversion.
+  double q = (0.5 * v - 0.5 * lo) / (0.5 * hi - 0.5 * lo) * 2097151.0;
+  return q > 0.0 ? uint64_t(std::min(q, 2097151.0)) : 0;
 }
 
 }  // namespace

@@ -83,6 +83,25 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
   ++geometryBuilds_;
 }
 
+uint64_t GpuScene::requiredBytes(const vk::Context& ctx, const prep::PreparedRank& r,
+                                 ShellGeometry shell) {
+  auto bytes = [](const auto& v) {
+    return std::max<uint64_t>(v.size() * sizeof(v[0]), 16);  // buffers hold 16 bytes at least
+  };
+  uint64_t b = bytes(r.positions) + std::max<uint64_t>(r.numVertices() * sizeof(float), 16) +
+               bytes(r.shellIndices) + bytes(r.shellRefs) + bytes(r.shellOther) +
+               bytes(r.shellAdjacency);
+  for (int t = 0; t < 4; ++t) b += bytes(r.elements[t]) + bytes(r.neighbors[t]);
+  const uint64_t tris = r.numShellTriangles();
+  if (tris > 0 && tris <= 0xFFFFFFFFull) {
+    const bool boxes = shell == ShellGeometry::Boxes;
+    if (boxes) b += tris * sizeof(VkAabbPositionsKHR);
+    b += vk::AccelerationStructure::bottomLevelBuildBytes(ctx, boxes, uint32_t(tris),
+                                                          uint32_t(r.numVertices()));
+  }
+  return b;
+}
+
 void GpuScene::setScalars(const std::vector<float>& values) {
   if (values.size() != numVertices_)
     throw Error("scalars for ", values.size(), " vertices, the scene has ", numVertices_);

@@ -25,6 +25,10 @@ class GpuScene {
  public:
   GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank,
            ShellGeometry shell = ShellGeometry::Boxes);
+  // Device memory a scene of `rank` needs while it is built (buffers, shell boxes, BLAS with its
+  // build scratch), allocating nothing: what an out-of-memory message compares with the device.
+  static uint64_t requiredBytes(const vk::Context& ctx, const prep::PreparedRank& rank,
+                                ShellGeometry shell = ShellGeometry::Boxes);
   ShellGeometry shellGeometry() const { return shell_; }
 
   // Scalars in this rank's vertex order (prep::gatherScalars); size must equal the vertex count.

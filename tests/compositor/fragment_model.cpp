@@ -92,7 +92,7 @@ std::vector<glm::dvec4> blendByDepth(const World& w, const CompositorOptions& o,
     std::vector<Keyed> all;
     for (size_t r = 0; r < stored.size(); ++r) {
       const uint32_t n = stored[r].counts[p];
-      perRank(int(r), &stored[r].fragments[at[r]], n, all);
+      perRank(int(r), stored[r].fragments.data() + at[r], n, all);  // may be empty
       at[r] += n;
     }
     std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) {
@@ -149,7 +149,7 @@ HostLists storedLists(const HostLists& raw, const CompositorOptions& o) {
   HostLists out;
   uint64_t at = 0;
   for (uint32_t n : raw.counts) {
-    std::vector<DcFragment> l = storeList(&raw.fragments[at], n, o);
+    std::vector<DcFragment> l = storeList(raw.fragments.data() + at, n, o);  // may be empty
     at += n;
     out.counts.push_back(uint32_t(l.size()));
     out.fragments.insert(out.fragments.end(), l.begin(), l.end());

@@ -1,0 +1,23 @@
+// Fault injection for the reliability tests (tests/reliability, docs/RELIABILITY.md): makes one
+// rank die or fail at a chosen point, so that tests can check that every other rank ends with the
+// message and that no half-written output remains. Off unless SHELLMARCH_FAULT is set:
+//
+//   SHELLMARCH_FAULT=at=frame,frame=N[,rank=R],action=kill|throw
+//       at the start of the N-th frame a render draws (0 = the first), after the scene is built
+//   SHELLMARCH_FAULT=at=write[,match=SUBSTRING][,rank=R],action=kill|throw
+//       halfway through writing an output file (PNG, cache, mesh, JSON) under its temporary name
+//
+// kill raises SIGKILL (a crash or the kernel's OOM killer: nothing runs after it); throw raises
+// sm::Error("injected fault ..."), the path of any ordinary error. The rank is the process's MPI
+// rank as the launcher sets it (0 without one); no rank= means every rank.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace sm::fault {
+
+void atFrame(uint64_t frame);
+void atWrite(const std::string& path);
+
+}  // namespace sm::fault
