@@ -1,3 +1,5 @@
+#include <malloc.h>
+
 #include <cstdio>
 #include <exception>
 
@@ -8,6 +10,11 @@
 #include "common/log.h"
 
 int main(int argc, char** argv) {
+  // Big arrays (cells, scalars, face keys) are mapped on their own and returned to the system when
+  // freed. glibc's default raises this threshold after the first large free, after which freed
+  // arrays stay resident and a rank's peak memory is the sum of every stage's arrays instead of
+  // the largest live set (docs/BENCHMARKS.md, peak memory).
+  mallopt(M_MMAP_THRESHOLD, 128 << 10);
   CLI::App app{
       "shellmarch: direct volume rendering of unstructured meshes, data-parallel over MPI"};
   app.require_subcommand(1);

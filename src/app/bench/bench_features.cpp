@@ -42,8 +42,8 @@ struct Scene {
   render::RenderSettings base;
 };
 
-std::unique_ptr<Scene> makeScene(const std::string& name, mesh::UnstructuredMesh m, const std::string& field,
-                                 const vk::Context& ctx, int w, int h) {
+std::unique_ptr<Scene> makeScene(const std::string& name, mesh::UnstructuredMesh m,
+                                 const std::string& field, const vk::Context& ctx, int w, int h) {
   auto sc = std::make_unique<Scene>();
   sc->name = name;
   const mesh::Field* f = m.findField(field);
@@ -92,7 +92,8 @@ void timeInterleaved(const vk::Context& ctx, std::vector<Variant>& vs, int runs,
   std::vector<Rig> rigs;
   for (Variant& v : vs) {
     Rig r;
-    r.compositor = std::make_unique<comp::DeepCompositor>(ctx, nullptr, v.settings.width, v.settings.height, v.lists);
+    r.compositor = std::make_unique<comp::DeepCompositor>(ctx, nullptr, v.settings.width,
+                                                          v.settings.height, v.lists);
     r.renderer = std::make_unique<render::Renderer>(ctx, *v.scene, *r.compositor);
     r.renderer->render(v.settings);  // cold: compiles
     rigs.push_back(std::move(r));
@@ -111,8 +112,13 @@ void report(const std::string& title, std::vector<Variant>& vs, Table& table, nl
   for (const Variant& v : vs) {
     const double m = median(v.ms);
     const double pct = 100.0 * (m - base) / base;
-    table.add({title, v.feature, v.state, fixed(m, 1), (pct >= 0 ? "+" : "") + fixed(pct, 1) + "%"});
-    out.push_back({{"scene", title}, {"feature", v.feature}, {"state", v.state}, {"ms", m}, {"vs_baseline_percent", pct},
+    table.add(
+        {title, v.feature, v.state, fixed(m, 1), (pct >= 0 ? "+" : "") + fixed(pct, 1) + "%"});
+    out.push_back({{"scene", title},
+                   {"feature", v.feature},
+                   {"state", v.state},
+                   {"ms", m},
+                   {"vs_baseline_percent", pct},
                    {"frames", v.ms}});
   }
 }
@@ -127,17 +133,20 @@ Variant variant(const Scene& sc, const std::string& feature, const std::string& 
 }
 
 // A mesh of one element type: specialised for it, A/A, and with every type's code compiled in.
-void typeTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Table& t, nlohmann::json& j) {
-  std::vector<Variant> vs = {variant(sc, "element types", "unused types specialised out (baseline)"),
-                             variant(sc, "element types", "the same again (A/A: noise floor)"),
-                             variant(sc, "element types", "all four types compiled in")};
+void typeTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Table& t,
+               nlohmann::json& j) {
+  std::vector<Variant> vs = {
+      variant(sc, "element types", "unused types specialised out (baseline)"),
+      variant(sc, "element types", "the same again (A/A: noise floor)"),
+      variant(sc, "element types", "all four types compiled in")};
   vs[2].settings.allTypePipelines = true;
   timeInterleaved(ctx, vs, a.runs, a.rounds);
   report(sc.name, vs, t, j);
 }
 
 // The mixed demo mesh: shading, element-exact, compaction, fragment encoding.
-void demoTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Table& t, nlohmann::json& j) {
+void demoTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Table& t,
+               nlohmann::json& j) {
   std::vector<Variant> vs = {variant(sc, "all", "nothing optional used (baseline)"),
                              variant(sc, "all", "the same again (A/A: noise floor)"),
                              variant(sc, "shading", "compiled in, no effect (ambient 1)"),
@@ -161,7 +170,8 @@ void rankTable(const FeatureArgs& a, const Scene& sc, Table& t, nlohmann::json& 
   vs[0].feature = vs[1].feature = "exchange between ranks";
   vs[0].state = "one rank: no exchange (baseline)";
   vs[1].state = "two ranks, all work on rank 0: exchange path";
-  RankGroup one(sc.mesh, "vortex", 1, 8, a.device), two(sc.mesh, "vortex", 2, 8, a.device, Dealing::AllOnRankZero);
+  RankGroup one(sc.mesh, "vortex", 1, 8, a.device),
+      two(sc.mesh, "vortex", 2, 8, a.device, Dealing::AllOnRankZero);
   for (int round = 0; round < a.rounds; ++round) {
     vs[0].ms.push_back(one.render(sc.base, {}, a.runs).ms);
     vs[1].ms.push_back(two.render(sc.base, {}, a.runs).ms);
@@ -187,24 +197,29 @@ void runFeatureBench(const FeatureArgs& a) {
   nlohmann::json rows = nlohmann::json::array();
   Table t({"scene", "feature", "state", "ms/frame", "vs baseline"}, 3);
   std::fprintf(stderr, "features: tetrahedra, hexahedra, demo capsule (%dx%d)\n", w, h);
-  typeTable(a, ctx, *makeScene("cube, 131k tetrahedra", analytic(gen::CubeSplit::Tets6, 28), "vortex", ctx, w, h), t,
-            rows);
-  typeTable(a, ctx, *makeScene("cube, 110k hexahedra", analytic(gen::CubeSplit::Hex, 48), "vortex", ctx, w, h), t,
-            rows);
+  typeTable(
+      a, ctx,
+      *makeScene("cube, 131k tetrahedra", analytic(gen::CubeSplit::Tets6, 28), "vortex", ctx, w, h),
+      t, rows);
+  typeTable(
+      a, ctx,
+      *makeScene("cube, 110k hexahedra", analytic(gen::CubeSplit::Hex, 48), "vortex", ctx, w, h), t,
+      rows);
   gen::CfdMeshOptions demo;  // as ci/demo.sh
   demo.targetElements = 300000;
   demo.clusters = 8;
   demo.steps = 4;
   demo.hexBlock = true;
-  auto capsule = makeScene("capsule (demo), 303k mixed", io::readMesh(generatedMesh(a.workDir, demo)), "vortex", ctx,
-                           w, h);
+  auto capsule = makeScene("capsule (demo), 303k mixed",
+                           io::readMesh(generatedMesh(a.workDir, demo)), "vortex", ctx, w, h);
   demoTable(a, ctx, *capsule, t, rows);
   rankTable(a, *capsule, t, rows);
   const prep::MemoryReport mem = prep::memoryReport(capsule->compact.rank);
-  const std::string text = concat("Machine: ", machineLine(machineJson()), "\n", w, "x", h, ", median of ",
-                                  a.runs * a.rounds, " frames per variant (", a.rounds, " interleaved rounds of ",
-                                  a.runs, ")\n\n", t.str(), "\nElement records of the capsule: compacted ",
-                                  mem.compactedElements, " bytes, plain ", mem.plainElements, " bytes.\n");
+  const std::string text =
+      concat("Machine: ", machineLine(machineJson()), "\n", w, "x", h, ", median of ",
+             a.runs * a.rounds, " frames per variant (", a.rounds, " interleaved rounds of ",
+             a.runs, ")\n\n", t.str(), "\nElement records of the capsule: compacted ",
+             mem.compactedElements, " bytes, plain ", mem.plainElements, " bytes.\n");
   std::printf("%s", text.c_str());
   if (!a.json.empty())
     writeJsonFile(a.json, {{"benchmark", "features"},
@@ -212,10 +227,14 @@ void runFeatureBench(const FeatureArgs& a) {
                            {"device", ctx.deviceName()},
                            {"size", {w, h}},
                            {"rows", rows},
-                           {"element_bytes", {{"compacted", mem.compactedElements}, {"plain", mem.plainElements}}}});
+                           {"element_bytes",
+                            {{"compacted", mem.compactedElements}, {"plain", mem.plainElements}}}});
   if (!a.markdown.empty())
-    writeBytesAtomically(a.markdown, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
-  if (ctx.validationErrors()) throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+    writeBytesAtomically(
+        a.markdown,
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+  if (ctx.validationErrors())
+    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
 }
 
 }  // namespace
@@ -224,8 +243,10 @@ void configureFeatureBench(CLI::App& cmd) {
   auto a = std::make_shared<FeatureArgs>();
   cmd.add_option("--size", a->size, "Image size: N (square) or WxH")->capture_default_str();
   cmd.add_option("--runs", a->runs, "Frames per variant and round")->capture_default_str();
-  cmd.add_option("--rounds", a->rounds, "Interleaved rounds over the variants")->capture_default_str();
-  cmd.add_option("--work-dir", a->workDir, "Where the demo mesh is generated once")->capture_default_str();
+  cmd.add_option("--rounds", a->rounds, "Interleaved rounds over the variants")
+      ->capture_default_str();
+  cmd.add_option("--work-dir", a->workDir, "Where the demo mesh is generated once")
+      ->capture_default_str();
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
   cmd.add_option("--json", a->json, "Write the results as JSON to this file");
   cmd.add_option("--markdown", a->markdown, "Write the table as Markdown to this file");
