@@ -42,6 +42,8 @@ for name in "${names[@]}"; do
     mesh=$work/capsule-300000-c8-s20-hex.pvtu
     [ -f "$mesh" ] || "$sm" generate --body capsule --elements 300000 --clusters 8 --steps 20 \
       --hex-block --out "$mesh"
+    mkdir -p "$work/time"
+    : >"$out/time.md"
     for ranks in 1 2; do
       for prefetch in on off; do
         flag=()
