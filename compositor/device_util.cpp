@@ -1,15 +1,7 @@
 #include "compositor/device_util.h"
 
 namespace sm::comp {
-namespace {
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess,
-                   VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
-  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  mb.srcAccessMask = srcAccess;
-  mb.dstAccessMask = dstAccess;
-  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &mb, 0, nullptr, 0, nullptr);
-}
-}  // namespace
+using vk::memoryBarrier;
 
 void previousWorkBarrier(VkCommandBuffer cmd) {
   const VkPipelineStageFlags stages =

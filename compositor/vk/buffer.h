@@ -77,6 +77,10 @@ Buffer makeBuffer(const Context& ctx, std::span<const T> data, const std::string
   return b;
 }
 
+// A global memory barrier from (src, srcAccess) to (dst, dstAccess); the named ones below are the
+// common cases.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dst, VkAccessFlags dstAccess);
 // Memory barrier between dependent compute (and transfer) work on the queue.
 void computeBarrier(VkCommandBuffer cmd);
 void transferToComputeBarrier(VkCommandBuffer cmd);

@@ -15,59 +15,15 @@
 #include "common/log.h"
 #include "io/mesh_io.h"
 #include "io_test_util.h"
+#include "support/allocation_cap.h"
 #include "support/test_support.h"
-
-namespace {
-std::atomic<size_t> gAllocationLimit{SIZE_MAX};
-
-void* allocate(std::size_t n, std::size_t align = 0) {
-  if (n > gAllocationLimit.load(std::memory_order_relaxed)) throw std::bad_alloc();
-  void* p = nullptr;
-  if (align > alignof(std::max_align_t)) {
-    if (posix_memalign(&p, align, n ? n : 1) != 0) p = nullptr;
-  } else {
-    p = std::malloc(n ? n : 1);
-  }
-  if (!p) throw std::bad_alloc();
-  return p;
-}
-}  // namespace
-
-// clang-format off
-void* operator new(std::size_t n) { return allocate(n); }
-void* operator new[](std::size_t n) { return allocate(n); }
-void* operator new(std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
-void* operator new[](std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-// clang-format on
 
 namespace sm::io {
 namespace {
 
 using test::fixturePath;
 
-// Quiet readers and a 32 MiB cap on any single allocation for the scope of a test.
-class Guard {
- public:
-  Guard() : level_(log::level()) {
-    log::setLevel(log::Level::Quiet);
-    gAllocationLimit = 32u << 20;
-  }
-  ~Guard() {
-    gAllocationLimit = SIZE_MAX;
-    log::setLevel(level_);
-  }
-
- private:
-  log::Level level_;
-};
+using Guard = sm::test::AllocationCap;
 
 // Reads bytes as `name`; returns "" for a mesh, the message for a FileError; fails otherwise.
 std::string outcome(const std::vector<uint8_t>& bytes, const std::string& name) {

@@ -18,58 +18,15 @@
 #include "io/mesh_io.h"
 #include "prep/cache.h"
 #include "scene/transfer_function.h"
+#include "support/allocation_cap.h"
 #include "support/test_support.h"
-
-namespace {
-std::atomic<size_t> gAllocationLimit{SIZE_MAX};
-
-void* allocate(std::size_t n, std::size_t align = 0) {
-  if (n > gAllocationLimit.load(std::memory_order_relaxed)) throw std::bad_alloc();
-  void* p = nullptr;
-  if (align > alignof(std::max_align_t)) {
-    if (posix_memalign(&p, align, n ? n : 1) != 0) p = nullptr;
-  } else {
-    p = std::malloc(n ? n : 1);
-  }
-  if (!p) throw std::bad_alloc();
-  return p;
-}
-}  // namespace
-
-// clang-format off
-void* operator new(std::size_t n) { return allocate(n); }
-void* operator new[](std::size_t n) { return allocate(n); }
-void* operator new(std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
-void* operator new[](std::size_t n, std::align_val_t a) { return allocate(n, std::size_t(a)); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-// clang-format on
 
 namespace sm {
 namespace {
 
 namespace fs = std::filesystem;
 
-class Guard {
- public:
-  Guard() : level_(log::level()) {
-    log::setLevel(log::Level::Quiet);
-    gAllocationLimit = 32u << 20;
-  }
-  ~Guard() {
-    gAllocationLimit = SIZE_MAX;
-    log::setLevel(level_);
-  }
-
- private:
-  log::Level level_;
-};
+using Guard = sm::test::AllocationCap;
 
 // The error a call gives: its message, or a test failure when it succeeds, allocates beyond the
 // limit or throws anything but sm::Error.
