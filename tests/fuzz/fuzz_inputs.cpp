@@ -93,11 +93,18 @@ std::string readMeshInput(std::span<const uint8_t> bytes, const std::string& nam
 
 std::string pvtuInput(std::span<const uint8_t> bytes) {
   mesh::UnstructuredMesh m;
+  std::vector<std::string> opened;
   try {
-    m = readPvtuBundle(bytes);
+    m = readPvtuBundle(bytes, &opened);
   } catch (const FileError& e) {
-    checkMessage(e.what(), "fuzz/");
-    return e.what();
+    // The file at fault is the index or a piece; a piece's Source may be absolute, so the message
+    // need not start with the index's folder, only with a path the reader asked for.
+    const std::string msg = e.what();
+    std::string prefix = "fuzz/";
+    for (const std::string& path : opened)
+      if (msg.rfind(printableLine(path + ":"), 0) == 0) prefix = printableLine(path);
+    checkMessage(msg, prefix);
+    return msg;
   } catch (const std::exception& e) {
     bug(std::string("not a FileError: ") + e.what());
   }
@@ -190,7 +197,8 @@ const std::vector<std::string>& ugridVariants() {
   return v;
 }
 
-mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes) {
+mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes,
+                                      std::vector<std::string>* opened) {
   const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::vector<std::string_view> parts;
   for (size_t at = 0;;) {
@@ -202,6 +210,7 @@ mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes) {
   const std::string index = "fuzz/index.pvtu";
   std::map<std::string, size_t> assigned;  // piece path -> bundle part
   io::OpenFile open = [&](const std::string& path) {
+    if (opened) opened->push_back(path);
     size_t part = 0;
     if (path != index) part = assigned.try_emplace(path, assigned.size() + 1).first->second;
     if (part >= parts.size()) throw FileError(path, "cannot open: No such file or directory");

@@ -38,8 +38,10 @@ std::string runInput(Target target, std::span<const uint8_t> bytes);
 // is read as "fuzz/index.pvtu"; the k-th distinct piece path it asks for gets part k of the bundle
 // (whatever its Source says), and a path beyond the bundle does not exist.
 inline constexpr std::string_view kPieceSeparator = "\n===piece===\n";
-// Reads a bundle as the .pvtu target does (throws sm::FileError for a rejected one).
-mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes);
+// Reads a bundle as the .pvtu target does (throws sm::FileError for a rejected one). `opened`,
+// when given, receives every path the reader asked for, the index first.
+mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes,
+                                      std::vector<std::string>* opened = nullptr);
 
 // .ugrid inputs: the first byte picks the variant (ascii, b8, lb8, b8l, ...), the rest is the file.
 const std::vector<std::string>& ugridVariants();  // "" for ascii, then the binary suffixes
