@@ -1,6 +1,7 @@
 #include "compositor/count_dump.h"
 
 #include <bit>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -19,8 +20,12 @@ std::runtime_error dumpError(const std::string& path, const std::string& what) {
 
 CountDumpWriter::CountDumpWriter(const std::string& path, uint32_t width, uint32_t height,
                                  uint32_t ranks)
-    : path_(path), out_(path, std::ios::binary), pixels_(uint64_t(width) * height), ranks_(ranks) {
-  if (!out_) throw dumpError(path, "cannot create the file");
+    : path_(path),
+      temp_(path + ".part"),
+      out_(temp_, std::ios::binary),
+      pixels_(uint64_t(width) * height),
+      ranks_(ranks) {
+  if (!out_) throw dumpError(path, "cannot create " + temp_);
   if (width == 0 || height == 0 || ranks == 0) throw dumpError(path, "empty image or no ranks");
   const uint32_t header[4] = {width, height, ranks, 0};
   out_.write(kMagic, sizeof kMagic);
@@ -44,6 +49,15 @@ void CountDumpWriter::close() {
                     std::to_string(written_) + " of " + std::to_string(ranks_) + " ranks written");
   out_.close();
   if (!out_) throw dumpError(path_, "write failed");
+  if (std::rename(temp_.c_str(), path_.c_str()) != 0)
+    throw dumpError(path_, "cannot rename " + temp_ + " to it");
+  closed_ = true;
+}
+
+CountDumpWriter::~CountDumpWriter() {
+  if (closed_) return;
+  out_.close();
+  std::remove(temp_.c_str());  // an unfinished dump must not be mistaken for a whole one
 }
 
 CountDumpReader::CountDumpReader(const std::string& path)

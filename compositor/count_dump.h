@@ -7,6 +7,7 @@
 //   ranks x (width * height) u32   counts of rank 0, then rank 1, ...; pixel y * width + x, row 0
 //                                  at the top (the compositor's pixel order)
 // Written and read one rank at a time: a 552-rank 1024x1024 dump (2.3 GB) never sits in memory.
+// The writer fills PATH.part and renames it on close(), so a dump that exists is complete.
 #pragma once
 
 #include <cstdint>
@@ -20,16 +21,20 @@ namespace sm::comp {
 class CountDumpWriter {
  public:
   CountDumpWriter(const std::string& path, uint32_t width, uint32_t height, uint32_t ranks);
+  ~CountDumpWriter();  // without close(): removes the unfinished file
+  CountDumpWriter(const CountDumpWriter&) = delete;
+  CountDumpWriter& operator=(const CountDumpWriter&) = delete;
   // Appends the next rank's counts (width * height of them).
   void append(std::span<const uint32_t> counts);
-  // Checks that every rank was written and flushes; the destructor does not check.
+  // Checks that every rank was written, flushes and renames the file into place.
   void close();
 
  private:
-  std::string path_;
+  std::string path_, temp_;
   std::ofstream out_;
   uint64_t pixels_;
   uint32_t ranks_, written_ = 0;
+  bool closed_ = false;
 };
 
 class CountDumpReader {

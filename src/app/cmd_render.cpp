@@ -25,6 +25,9 @@ void registerRender(CLI::App& app) {
       "Also composite with the other method and write the per-pixel L2 difference heatmap (PNG)");
   cmd->add_option("--heatmaps", job->heatmaps,
                   "Write fragment-count heatmaps PREFIX_rank<r>.png and PREFIX_all.png");
+  cmd->add_option("--dump-counts", job->dumpCounts,
+                  "Write every rank's per-pixel fragment counts to this file, for "
+                  "`shellmarch_bench_compositor replay --dump FILE`");
   cmd->add_flag("--stats", job->stats,
                 "Print segments and fragments per pixel, lost rays, ms per stage");
   cmd->add_option("--stats-json", job->statsJson, "Write the statistics as JSON to this file");

@@ -6,6 +6,7 @@
 #include "app/render_job.h"
 #include "common/error.h"
 #include "common/log.h"
+#include "compositor/count_dump.h"
 #include "compositor/image_compare.h"
 #include "scene/image.h"
 
@@ -64,6 +65,21 @@ void writeCountHeatmaps(comp::DeepCompositor& compositor, const std::string& pre
             allMax, " fragments per pixel)");
 }
 
+// The frame's counts for replaying the exchange at other rank counts (compositor/replay.h).
+void dumpCounts(comp::DeepCompositor& compositor, const std::string& path, Collectives& coll) {
+  std::vector<std::vector<uint32_t>> counts = compositor.gatherCounts();
+  if (coll.rank() != 0) return;
+  try {
+    comp::CountDumpWriter w(path, uint32_t(compositor.width()), uint32_t(compositor.height()),
+                            uint32_t(counts.size()));
+    for (const auto& c : counts) w.append(c);
+    w.close();
+  } catch (const std::runtime_error& e) {
+    throw Error("--dump-counts: ", e.what());
+  }
+  log::info("wrote the fragment counts of ", counts.size(), " rank(s) to ", path);
+}
+
 }  // namespace
 
 std::string framePath(const std::string& out, uint64_t step, bool sequence) {
@@ -86,6 +102,8 @@ void writeFrameExtras(const RenderJob& job, comp::DeepCompositor& compositor,
     compareMethods(job, compositor, image, framePath(job.l2Heatmap, step, sequence), coll);
   if (!job.heatmaps.empty())
     writeCountHeatmaps(compositor, framePath(job.heatmaps, step, sequence), coll);
+  if (!job.dumpCounts.empty())
+    dumpCounts(compositor, framePath(job.dumpCounts, step, sequence), coll);
 }
 
 }  // namespace sm::app

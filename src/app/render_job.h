@@ -40,8 +40,9 @@ struct RenderJob {
   render::Integration integration = render::Integration::Sampled;
   render::Shading shading;
   bool allTypePipelines = false;
-  std::string l2Heatmap;  // also composite single-fragment; write the L2 difference heatmap here
-  std::string heatmaps;   // prefix: fragment-count heatmaps per rank and combined (PNG)
+  std::string l2Heatmap;   // also composite single-fragment; write the L2 difference heatmap here
+  std::string heatmaps;    // prefix: fragment-count heatmaps per rank and combined (PNG)
+  std::string dumpCounts;  // per-rank, per-pixel fragment counts (compositor/count_dump.h)
   bool stats = false;
   std::string statsJson;  // write statistics as JSON here
   int repeat = 1;         // render the step sequence this many times (benchmarks); images once

@@ -35,11 +35,26 @@ case $case_name in
     # Interleaved non-convex clusters on 3 ranks: deep compositing matches the one-rank image,
     # single-fragment (IceT-style) compositing visibly does not.
     "$sm" render demo.pvtu "${view[@]}" --clusters 1 --out one.pfm
-    mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 36 --out deep.pfm --l2-heatmap l2.png --heatmaps counts
+    mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 36 --out deep.pfm --l2-heatmap l2.png --heatmaps counts \
+      --dump-counts counts.smfcnt
     mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 36 --composite single --out single.pfm
     "$diff" one.pfm deep.pfm --max-abs 1e-3
     "$diff" one.pfm single.pfm --min-max-abs 0.02
     test -s l2.png && test -s counts_rank0.png && test -s counts_rank2.png && test -s counts_all.png
+    # The frame's counts, for replaying the exchange at other rank counts: 3 ranks of W x H, every
+    # rank with fragments (36 interleaved clusters), no unfinished part left behind.
+    python3 - counts.smfcnt $W $H 3 <<'PY'
+import struct, sys
+path, w, h, ranks = sys.argv[1], *map(int, sys.argv[2:])
+data = open(path, "rb").read()
+assert data[:8] == b"SMFCNT01", "magic"
+assert struct.unpack_from("<4I", data, 8) == (w, h, ranks, 0), "header"
+assert len(data) == 24 + 4 * w * h * ranks, "size"
+for r in range(ranks):
+    counts = struct.unpack_from("<%dI" % (w * h), data, 24 + 4 * w * h * r)
+    assert sum(counts) > 0, "rank %d has no fragments" % r
+PY
+    test ! -e counts.smfcnt.part
     ;;
   nested-and-empty)
     # Clusters enclosed by other clusters (an onion of three), one per rank: deep compositing gives

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 
@@ -116,10 +117,23 @@ TEST(CompositorCountDump, RoundTripsRanksInAnyOrder) {
 
 TEST(CompositorCountDump, RejectsWrongSizesAndForeignFiles) {
   const std::string path = tempPath("short.smfc");
-  CountDumpWriter w(path, 2, 2, 2);
-  EXPECT_THROW(w.append(std::vector<uint32_t>(3)), std::runtime_error);
-  w.append(std::vector<uint32_t>(4));
-  EXPECT_THROW(w.close(), std::runtime_error) << "one rank missing";
+  std::remove(path.c_str());
+  {
+    CountDumpWriter w(path, 2, 2, 2);
+    EXPECT_THROW(w.append(std::vector<uint32_t>(3)), std::runtime_error);
+    w.append(std::vector<uint32_t>(4));
+    EXPECT_THROW(w.close(), std::runtime_error) << "one rank missing";
+  }
+  // An unfinished dump never takes the name of a whole one, nor stays behind as a part.
+  EXPECT_FALSE(std::ifstream(path).good());
+  EXPECT_FALSE(std::ifstream(path + ".part").good());
+  {  // A dump cut short on disk (a full disk, a copy interrupted) is caught by the reader.
+    CountDumpWriter w(path, 2, 2, 2);
+    w.append(std::vector<uint32_t>(4));
+    w.append(std::vector<uint32_t>(4));
+    w.close();
+  }
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 4);
   EXPECT_THROW(CountDumpReader{path}, std::runtime_error) << "truncated";
   std::ofstream(path) << "P6 not a dump";
   EXPECT_THROW(CountDumpReader{path}, std::runtime_error);

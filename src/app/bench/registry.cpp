@@ -20,6 +20,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "Pay for what you use: each optional feature's cost when unused (specialised out, A/A noise "
        "floor), compiled in without effect, and used",
        configureFeatureBench},
+      {"counts",
+       "The exchange at 72 and 552 ranks from real frames: each virtual rank's share rendered in "
+       "turn, its fragment counts dumped and replayed (bytes per rank, load imbalance)",
+       configureCountBench},
   };
   return all;
 }

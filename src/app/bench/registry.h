@@ -21,9 +21,10 @@ struct BenchCommand {
 const std::vector<BenchCommand>& benchCommands();
 
 // Defined by each benchmark's own file.
-void configurePrepBench(CLI::App& cmd);    // bench_prep.cpp
-void configureRenderBench(CLI::App& cmd);  // bench_render.cpp
+void configurePrepBench(CLI::App& cmd);      // bench_prep.cpp
+void configureRenderBench(CLI::App& cmd);    // bench_render.cpp
 void configureAccuracyBench(CLI::App& cmd);  // bench_accuracy.cpp
 void configureFeatureBench(CLI::App& cmd);   // bench_features.cpp
+void configureCountBench(CLI::App& cmd);     // bench_counts.cpp
 
 }  // namespace sm::app::bench
