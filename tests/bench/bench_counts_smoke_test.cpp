@@ -16,8 +16,8 @@ TEST(BenchCounts, TinyMeshDumpsAndReplaysRealCounts) {
   const std::string mesh = writeTinyMesh(dir);
   const std::string json = dir + "/counts.json";
   std::string log;
-  ASSERT_EQ(runTool({"bench", "counts", "--mesh", mesh, "--ranks", "1,3", "--size", "24", "--field",
-                     "vortex", "--dump-dir", dir + "/dumps", "--json", json},
+  ASSERT_EQ(runTool({"bench", "counts", "--mesh", mesh, "--ranks", "1,3", "--sizes", "24",
+                     "--field", "vortex", "--dump-dir", dir + "/dumps", "--json", json},
                     dir, "counts", log),
             0)
       << log;

@@ -1,5 +1,5 @@
-// shellmarch bench counts [--mesh FILE | the demo capsule] [--ranks 72,552] [--size N]
-//                         [--dump-dir DIR] [--json F] [--markdown F]
+// shellmarch bench counts [--mesh FILE | the demo capsule] [--ranks 72,552]
+//                         [--sizes 512,1024] [--dump-dir DIR] [--json F] [--markdown F]
 // The exchange at rank counts this machine cannot run (the paper's 72 and 552), from real frames:
 // the mesh is split into METIS clusters dealt round-robin to N virtual ranks; each virtual rank's
 // share is prepared and rendered on the device in turn, exactly as that rank would render it, and
@@ -31,7 +31,7 @@ namespace {
 struct CountArgs {
   std::string mesh;  // "" = the demo capsule (ci/demo.sh's options), generated under workDir
   std::string field = "vortex", colormap = "cool-to-warm";
-  std::string ranks = "72,552", size = "512";
+  std::string ranks = "72,552", sizes = "512";
   int clustersPerRank = 1;
   std::string workDir = "out/bench", dumpDir, json, markdown, device;
 };
@@ -152,7 +152,7 @@ nlohmann::json replayRow(const std::string& dump, int ranks, const DumpSummary& 
 
 void runCountBench(const CountArgs& a) {
   const std::vector<uint64_t> rankCounts = parseCounts("--ranks", a.ranks);
-  const auto [w, h] = parseSizes("--size", a.size).front();
+  const std::vector<std::pair<int, int>> sizes = parseSizes("--sizes", a.sizes);
   if (a.clustersPerRank < 1)
     throw Error("--clusters-per-rank: must be at least 1, not ", a.clustersPerRank);
   const std::string path = countMesh(a);
@@ -169,28 +169,29 @@ void runCountBench(const CountArgs& a) {
   vk::ContextOptions co;
   co.device = a.device;
   vk::Context ctx(co);
-  const render::RenderSettings settings = wholeFrame(whole, *field, a, w, h);
-
   nlohmann::json rows = nlohmann::json::array();
   Table table({"ranks", "image", "fragments", "frag/rank px", "bits", "count kB/rank mean", "max",
                "float frag kB/rank mean", "max", "rgba8 mean", "max", "render imbal", "comp imbal",
                "render s"});
-  for (uint64_t n : rankCounts) {
-    const std::string dump =
-        concat(dumpDir, "/counts-", std::filesystem::path(path).stem().string(), "-", n, "r-", w,
-               "x", h, ".smfcnt");
-    const DumpSummary d =
-        dumpRealCounts(ctx, whole, *field, settings, int(n), a.clustersPerRank, dump);
-    nlohmann::json row = replayRow(dump, int(n), d);
-    auto kB = [&](const char* f, const char* s) { return fixed(double(row[f][s]) / 1e3, 1); };
-    table.add({std::to_string(n), sizeName(w, h), std::to_string(d.fragments),
-               fixed(double(row["fragments_per_nonempty_rank_pixel"]), 2),
-               std::to_string(int(row["counter_bits"])), kB("count_bytes_sent", "mean"),
-               kB("count_bytes_sent", "max"), kB("fragment_bytes_sent_float", "mean"),
-               kB("fragment_bytes_sent_float", "max"), kB("fragment_bytes_sent_rgba8", "mean"),
-               kB("fragment_bytes_sent_rgba8", "max"), fixed(double(row["render_imbalance"]), 2),
-               fixed(double(row["composite_imbalance"]), 2), fixed(d.seconds, 0)});
-    rows.push_back(std::move(row));
+  for (const auto& [w, h] : sizes) {
+    const render::RenderSettings settings = wholeFrame(whole, *field, a, w, h);
+    for (uint64_t n : rankCounts) {
+      const std::string dump =
+          concat(dumpDir, "/counts-", std::filesystem::path(path).stem().string(), "-", n, "r-", w,
+                 "x", h, ".smfcnt");
+      const DumpSummary d =
+          dumpRealCounts(ctx, whole, *field, settings, int(n), a.clustersPerRank, dump);
+      nlohmann::json row = replayRow(dump, int(n), d);
+      auto kB = [&](const char* f, const char* s) { return fixed(double(row[f][s]) / 1e3, 1); };
+      table.add({std::to_string(n), sizeName(w, h), std::to_string(d.fragments),
+                 fixed(double(row["fragments_per_nonempty_rank_pixel"]), 2),
+                 std::to_string(int(row["counter_bits"])), kB("count_bytes_sent", "mean"),
+                 kB("count_bytes_sent", "max"), kB("fragment_bytes_sent_float", "mean"),
+                 kB("fragment_bytes_sent_float", "max"), kB("fragment_bytes_sent_rgba8", "mean"),
+                 kB("fragment_bytes_sent_rgba8", "max"), fixed(double(row["render_imbalance"]), 2),
+                 fixed(double(row["composite_imbalance"]), 2), fixed(d.seconds, 0)});
+      rows.push_back(std::move(row));
+    }
   }
   const std::string text =
       concat("Machine: ", machineLine(machineJson()), "\nMesh: ", path, " (", whole.numCells(),
@@ -222,7 +223,8 @@ void configureCountBench(CLI::App& cmd) {
   cmd.add_option("--colormap", a->colormap, "Colour map")->capture_default_str();
   cmd.add_option("--ranks", a->ranks, "Virtual rank counts, comma separated")
       ->capture_default_str();
-  cmd.add_option("--size", a->size, "Image size: N (square) or WxH")->capture_default_str();
+  cmd.add_option("--sizes", a->sizes, "Image sizes: N (square) or WxH, comma separated")
+      ->capture_default_str();
   cmd.add_option("--clusters-per-rank", a->clustersPerRank,
                  "METIS clusters per virtual rank (dealt round-robin)")
       ->capture_default_str();
