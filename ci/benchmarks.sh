@@ -56,7 +56,11 @@ for name in "${names[@]}"; do
     done ;;
   compositor)
     "$comp" sweep --max-ranks 8 --sizes 512,1024 --json "$out/compositor.json" | tee "$out/compositor.md"
-    "$comp" replay --ranks 72,552 --width 1024 --height 1024 | tee "$out/compositor-replay.md" ;;
+    "$comp" replay --ranks 72,552 --width 1024 --height 1024 | tee "$out/compositor-replay.md"
+    # The same rank counts from real frames: each virtual rank's share of the demo rendered in
+    # turn, its fragment counts dumped and replayed through the exchange.
+    "$sm" bench counts --ranks 72,552 --sizes 512,1024 --work-dir "$work" \
+      --json "$out/compositor-counts.json" --markdown "$out/compositor-counts.md" ;;
   *)
     echo "benchmarks.sh: unknown benchmark '$name'" >&2
     exit 2 ;;
