@@ -117,17 +117,17 @@ vec3 linearGradient(mat3 J, vec3 dp) {
 // World-space gradient of the scalar (for shading) in a pyramid, wedge or hexahedron, from the
 // shape functions at parametric point p, mapped by the inverse transposed Jacobian. (Constant in a
 // tetrahedron: the marcher computes that once per element.)
-vec3 scalarGradient(uint type, ElementGeom g, vec3 X[8], vec3 p) {
+vec3 scalarGradient(uint type, vec3 X[8], float S[8], vec3 p) {
   float N[8];
   vec3 dN[8];
   shapeFunctions(type, p, N, dN);
   mat3 J = mat3(0.0);
   vec3 dp = vec3(0.0);
-  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
+  [[unroll]] for (uint i = 0u; i < 8u; ++i) {
     J[0] += dN[i].x * X[i];
     J[1] += dN[i].y * X[i];
     J[2] += dN[i].z * X[i];
-    dp += g.S[i] * dN[i];
+    dp += S[i] * dN[i];
   }
   return linearGradient(J, dp);
 }
@@ -136,18 +136,18 @@ vec3 scalarGradient(uint type, ElementGeom g, vec3 X[8], vec3 p) {
 // the ray between the crossing scalars (exact for linear elements); the other types evaluate their
 // shape functions (Newton from the last point's parametric coordinates) everywhere. With shading,
 // also the shading cosine there.
-float scalarAlongRay(RayFrame fr, uint type, ElementGeom g, vec3 X[8], vec3 tetGrad, float tIn, float tOut,
-                     float sIn, float sOut, float t, inout vec3 guess, out float cosine) {
+float scalarAlongRay(RayFrame fr, uint type, vec3 W0, vec3 X[8], float S[8], vec3 tetGrad, float tIn,
+                     float tOut, float sIn, float sOut, float t, inout vec3 guess, out float cosine) {
   float s;
   if (type == SM_TET) {
     s = t <= tIn ? sIn : t >= tOut ? sOut : mix(sIn, sOut, (t - tIn) / (tOut - tIn));
   } else {
     // Not the crossing scalars at the ends: those interpolate over the face's triangles, which
     // differs from the cell's own (bilinear) interpolation on a quadrilateral face.
-    invertIsoparametric(type, X, fr.org + t * fr.dir - g.W[0], guess);
-    s = interpolateIsoparametric(type, guess, g.S);
+    invertIsoparametric(type, X, fr.org + t * fr.dir - W0, guess);
+    s = interpolateIsoparametric(type, guess, S);
   }
-  if (kShading) cosine = shadingCosine(type == SM_TET ? tetGrad : scalarGradient(type, g, X, guess), fr.dir);
+  if (kShading) cosine = shadingCosine(type == SM_TET ? tetGrad : scalarGradient(type, X, S, guess), fr.dir);
   else cosine = -1.0;
   return s;
 }
@@ -155,20 +155,29 @@ float scalarAlongRay(RayFrame fr, uint type, ElementGeom g, vec3 X[8], vec3 tetG
 // What the element crossed over [tIn, tOut) adds within [a, b): its samples on the global grid,
 // or in element-exact mode the whole piece, pre-integrated (shaded with the cosine at its end).
 // tetGrad: a tetrahedron's gradient (shading only); g: the geometry of any other element.
-void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec3 tetGrad, float tIn, float tOut,
-                      float sIn, float sOut, float a, float b, inout vec3 guess, inout vec4 acc, inout uint samples) {
+void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec3 tetGrad, float tIn,
+                      float tOut, float sIn, float sOut, float a, float b, inout vec3 guess, inout vec4 acc,
+                      inout uint samples) {
   float dt = fp.dt;
-  // Newton works relative to the element's first vertex: small numbers, better conditioned.
+  // Newton works relative to the element's first vertex: small numbers, better conditioned. Zero
+  // past the element's vertices (see interpolate.glsl).
+  vec3 W0 = g.W[0];
   vec3 X[8];
-  if (type != SM_TET)
-    for (uint i = 0u; i < 8u; ++i) X[i] = g.W[i] - g.W[0];
+  float S[8];
+  if (type != SM_TET) {
+    uint nv = SM_NUM_VERTS[type];
+    [[unroll]] for (uint i = 0u; i < 8u; ++i) {
+      X[i] = i < nv ? g.W[i] - W0 : vec3(0.0);
+      S[i] = i < nv ? g.S[i] : 0.0;
+    }
+  }
   float cosine;
   if (kElementExact) {
     uint m = type == SM_TET ? 1u : clamp(uint(ceil((b - a) / dt)), kMinPieces, kMaxPieces);
     float tPrev = a, sPrev = 0.0;
     SM_NO_UNROLL for (uint i = 0u; i <= m; ++i) {
       float t = i == m ? b : mix(a, b, float(i) / float(m));
-      float s = scalarAlongRay(fr, type, g, X, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
+      float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
       if (i > 0u) {
         vec4 c = preintegrated(fp, sPrev, s, t - tPrev);
         if (kShading) c.rgb = shade(fp, c.rgb, c.a, cosine);
@@ -183,7 +192,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
   }
   for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
-    float s = scalarAlongRay(fr, type, g, X, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
+    float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
     vec4 c = vec4(0.0);
     if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
       c = transferLookup(fp, s);
