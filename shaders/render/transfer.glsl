@@ -3,12 +3,22 @@
 #ifndef SM_TRANSFER_GLSL
 #define SM_TRANSFER_GLSL
 
+vec2 unpackFloats(uint64_t x) { return uintBitsToFloat(unpackUint2x32(x)); }
+
+// Entries i and min(i + 1, n - 1) of the table, interpolated. Every per-lane load is a gather on
+// lavapipe, and the table's were about half of a sample's cost: the two entries are read as one
+// 32-byte span of four 64-bit words (half the gathers of eight floats; the buffer is 16-byte
+// aligned), from entry min(i, n - 2) (the renderer insists on n >= 2) so that the span stays in the
+// table.
 vec4 transferLookup(FrameParams fp, float s) {
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
-  uint i = min(uint(x), fp.tfEntries - 1u);
-  uint j = min(i + 1u, fp.tfEntries - 1u);
-  SmVec4s tf = SmVec4s(fp.transferFunction);
-  return mix(tf.v[i], tf.v[j], x - float(i));
+  // x >= 0, so int(x) is uint(x); lavapipe converts float to uint one lane at a time.
+  uint i = min(uint(int(x)), fp.tfEntries - 1u);
+  uint w = 2u * min(i, fp.tfEntries - 2u);
+  SmUint64s tf = SmUint64s(fp.transferFunction);
+  vec4 hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
+  vec4 lo = i == fp.tfEntries - 1u ? hi : vec4(unpackFloats(tf.v[w]), unpackFloats(tf.v[w + 1u]));
+  return mix(lo, hi, x - float(i));
 }
 
 // t of grid sample k, computed the same way everywhere (so every rank agrees on boundaries).
