@@ -1,6 +1,11 @@
 // Scalar interpolation inside an element: barycentric in tetrahedra (done on the faces by the
 // marcher), VTK's isoparametric shape functions in pyramids, wedges and hexahedra, inverted by
 // Newton's method to 1e-6 in parametric space.
+//
+// The arrays here are indexed by constants only (the loops over the eight shape functions are
+// unrolled; entries past the element's vertex count are zero): lavapipe keeps such arrays in vector
+// registers, while a dynamic index turns every access into per-lane scalar loads and stores. Adding
+// the zero terms leaves every sum unchanged.
 #ifndef SM_INTERPOLATE_GLSL
 #define SM_INTERPOLATE_GLSL
 
@@ -9,7 +14,8 @@
 // Shape functions N[i] and their derivatives dN[i] = (dN/dr, dN/ds, dN/dt) at parametric point p.
 void shapeFunctions(uint type, vec3 p, out float N[8], out vec3 dN[8]) {
   float r = p.x, s = p.y, t = p.z;
-  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) { N[i] = 0.0; dN[i] = vec3(0.0); }
+  N = float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+  dN = vec3[8](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   if (type == SM_HEX) {
     float rm = 1.0 - r, sm = 1.0 - s, tm = 1.0 - t;
     N[0] = rm * sm * tm; N[1] = r * sm * tm; N[2] = r * s * tm; N[3] = rm * s * tm;
@@ -43,17 +49,16 @@ vec3 isoparametricPosition(uint type, vec3 P[8], vec3 p) {
   vec3 dN[8];
   shapeFunctions(type, p, N, dN);
   vec3 x = vec3(0.0);
-  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) x += N[i] * P[i];
+  [[unroll]] for (uint i = 0u; i < 8u; ++i) x += N[i] * P[i];
   return x;
 }
 
 // Parametric coordinates of x in the element with corner positions P (any common origin for P and
-// x). `p` is the starting guess and receives the result. Newton's method with step halving on the
-// residual, so that it converges from the element centre even in strongly warped cells; points just
-// outside the element (between a warped face and its two triangles) converge to coordinates just
-// outside [0, 1], which interpolateIsoparametric clamps.
+// x; zero past the element's vertices). `p` is the starting guess and receives the result. Newton's
+// method with step halving on the residual, so that it converges from the element centre even in
+// strongly warped cells; points just outside the element (between a warped face and its two
+// triangles) converge to coordinates just outside [0, 1], which interpolateIsoparametric clamps.
 void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
-  uint nv = SM_NUM_VERTS[type];
   vec3 res = isoparametricPosition(type, P, p) - x;
   float rn = dot(res, res);
   SM_NO_UNROLL for (int it = 0; it < 16; ++it) {
@@ -61,7 +66,7 @@ void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
     vec3 dN[8];
     shapeFunctions(type, p, N, dN);
     mat3 J = mat3(0.0);  // columns: d(position)/dr, /ds, /dt
-    SM_NO_UNROLL for (uint i = 0u; i < nv; ++i) {
+    [[unroll]] for (uint i = 0u; i < 8u; ++i) {
       J[0] += dN[i].x * P[i];
       J[1] += dN[i].y * P[i];
       J[2] += dN[i].z * P[i];
@@ -104,7 +109,7 @@ float interpolateIsoparametric(uint type, vec3 p, float S[8]) {
   if (type == SM_WED) q.xy = projectToTriangle(p.xy);
   shapeFunctions(type, q, N, dN);
   float s = 0.0;
-  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) s += N[i] * S[i];
+  [[unroll]] for (uint i = 0u; i < 8u; ++i) s += N[i] * S[i];
   return s;
 }
 

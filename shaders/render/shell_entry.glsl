@@ -53,10 +53,6 @@ void walkFromShell(RayFrame fr, SceneRefs sc, uint tri, out Walk w) {
     }
   }
   w.next = SmUints(sc.shellRefs).v[tri];
-  w.type = 0u;
-  w.index = 0u;
-  w.v = uint[8](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
-  w.entryFace = -1;
   vec3 p0 = projectVertex(fr, vertexPosition(sc, ids.x));
   vec3 p1 = projectVertex(fr, vertexPosition(sc, ids.y));
   vec3 p2 = projectVertex(fr, vertexPosition(sc, ids.z));

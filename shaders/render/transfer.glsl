@@ -3,12 +3,22 @@
 #ifndef SM_TRANSFER_GLSL
 #define SM_TRANSFER_GLSL
 
+vec2 unpackFloats(uint64_t x) { return uintBitsToFloat(unpackUint2x32(x)); }
+
+// Entries i and min(i + 1, n - 1) of the table, interpolated. Every per-lane load is a gather on
+// lavapipe, and the table's were about half of a sample's cost: the two entries are read as one
+// 32-byte span of four 64-bit words (half the gathers of eight floats; the buffer is 16-byte
+// aligned), from entry min(i, n - 2) (the renderer insists on n >= 2) so that the span stays in the
+// table.
 vec4 transferLookup(FrameParams fp, float s) {
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
-  uint i = min(uint(x), fp.tfEntries - 1u);
-  uint j = min(i + 1u, fp.tfEntries - 1u);
-  SmVec4s tf = SmVec4s(fp.transferFunction);
-  return mix(tf.v[i], tf.v[j], x - float(i));
+  // x >= 0, so int(x) is uint(x); lavapipe converts float to uint one lane at a time.
+  uint i = min(uint(int(x)), fp.tfEntries - 1u);
+  uint w = 2u * min(i, fp.tfEntries - 2u);
+  SmUint64s tf = SmUint64s(fp.transferFunction);
+  vec4 hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
+  vec4 lo = i == fp.tfEntries - 1u ? hi : vec4(unpackFloats(tf.v[w]), unpackFloats(tf.v[w + 1u]));
+  return mix(lo, hi, x - float(i));
 }
 
 // t of grid sample k, computed the same way everywhere (so every rank agrees on boundaries).
@@ -108,66 +118,76 @@ vec4 preintegrated(FrameParams fp, float sf, float sb, float L) {
 const uint kMinPieces = 4u;
 const uint kMaxPieces = 64u;
 
-// World-space gradient of the scalar (for shading): constant in a tetrahedron; elsewhere from the
-// shape functions at parametric point p, mapped by the inverse transposed Jacobian.
-vec3 scalarGradient(uint type, ElementGeom g, vec3 X[8], vec3 p) {
-  mat3 J;
-  vec3 dp;
-  if (type == SM_TET) {
-    J = mat3(g.W[1] - g.W[0], g.W[2] - g.W[0], g.W[3] - g.W[0]);
-    dp = vec3(g.S[1] - g.S[0], g.S[2] - g.S[0], g.S[3] - g.S[0]);
-  } else {
-    float N[8];
-    vec3 dN[8];
-    shapeFunctions(type, p, N, dN);
-    J = mat3(0.0);
-    dp = vec3(0.0);
-    SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
-      J[0] += dN[i].x * X[i];
-      J[1] += dN[i].y * X[i];
-      J[2] += dN[i].z * X[i];
-      dp += g.S[i] * dN[i];
-    }
-  }
+// Gradient of a scalar that changes by dp along the columns of J: inverse(transpose(J)) * dp.
+vec3 linearGradient(mat3 J, vec3 dp) {
   if (!(abs(determinant(J)) > 0.0)) return vec3(0.0);
   return inverse(transpose(J)) * dp;
+}
+
+// World-space gradient of the scalar (for shading) in a pyramid, wedge or hexahedron, from the
+// shape functions at parametric point p, mapped by the inverse transposed Jacobian. (Constant in a
+// tetrahedron: the marcher computes that once per element.)
+vec3 scalarGradient(uint type, vec3 X[8], float S[8], vec3 p) {
+  float N[8];
+  vec3 dN[8];
+  shapeFunctions(type, p, N, dN);
+  mat3 J = mat3(0.0);
+  vec3 dp = vec3(0.0);
+  [[unroll]] for (uint i = 0u; i < 8u; ++i) {
+    J[0] += dN[i].x * X[i];
+    J[1] += dN[i].y * X[i];
+    J[2] += dN[i].z * X[i];
+    dp += S[i] * dN[i];
+  }
+  return linearGradient(J, dp);
 }
 
 // The scalar at t on the element crossed over [tIn, tOut]: tetrahedra interpolate linearly along
 // the ray between the crossing scalars (exact for linear elements); the other types evaluate their
 // shape functions (Newton from the last point's parametric coordinates) everywhere. With shading,
 // also the shading cosine there.
-float scalarAlongRay(RayFrame fr, uint type, ElementGeom g, vec3 X[8], float tIn, float tOut, float sIn,
-                     float sOut, float t, inout vec3 guess, out float cosine) {
+float scalarAlongRay(RayFrame fr, uint type, vec3 W0, vec3 X[8], float S[8], vec3 tetGrad, float tIn,
+                     float tOut, float sIn, float sOut, float t, inout vec3 guess, out float cosine) {
   float s;
   if (type == SM_TET) {
     s = t <= tIn ? sIn : t >= tOut ? sOut : mix(sIn, sOut, (t - tIn) / (tOut - tIn));
   } else {
     // Not the crossing scalars at the ends: those interpolate over the face's triangles, which
     // differs from the cell's own (bilinear) interpolation on a quadrilateral face.
-    invertIsoparametric(type, X, fr.org + t * fr.dir - g.W[0], guess);
-    s = interpolateIsoparametric(type, guess, g.S);
+    invertIsoparametric(type, X, fr.org + t * fr.dir - W0, guess);
+    s = interpolateIsoparametric(type, guess, S);
   }
-  cosine = kShading ? shadingCosine(scalarGradient(type, g, X, guess), fr.dir) : -1.0;
+  if (kShading) cosine = shadingCosine(type == SM_TET ? tetGrad : scalarGradient(type, X, S, guess), fr.dir);
+  else cosine = -1.0;
   return s;
 }
 
 // What the element crossed over [tIn, tOut) adds within [a, b): its samples on the global grid,
 // or in element-exact mode the whole piece, pre-integrated (shaded with the cosine at its end).
-void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, float tIn, float tOut, float sIn,
-                      float sOut, float a, float b, inout vec3 guess, inout vec4 acc, inout uint samples) {
+// tetGrad: a tetrahedron's gradient (shading only); g: the geometry of any other element.
+void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec3 tetGrad, float tIn,
+                      float tOut, float sIn, float sOut, float a, float b, inout vec3 guess, inout vec4 acc,
+                      inout uint samples) {
   float dt = fp.dt;
-  // Newton works relative to the element's first vertex: small numbers, better conditioned.
+  // Newton works relative to the element's first vertex: small numbers, better conditioned. Zero
+  // past the element's vertices (see interpolate.glsl).
+  vec3 W0 = g.W[0];
   vec3 X[8];
-  if (type != SM_TET)
-    for (uint i = 0u; i < 8u; ++i) X[i] = g.W[i] - g.W[0];
+  float S[8];
+  if (type != SM_TET) {
+    uint nv = SM_NUM_VERTS[type];
+    [[unroll]] for (uint i = 0u; i < 8u; ++i) {
+      X[i] = i < nv ? g.W[i] - W0 : vec3(0.0);
+      S[i] = i < nv ? g.S[i] : 0.0;
+    }
+  }
   float cosine;
   if (kElementExact) {
     uint m = type == SM_TET ? 1u : clamp(uint(ceil((b - a) / dt)), kMinPieces, kMaxPieces);
     float tPrev = a, sPrev = 0.0;
     SM_NO_UNROLL for (uint i = 0u; i <= m; ++i) {
       float t = i == m ? b : mix(a, b, float(i) / float(m));
-      float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
+      float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
       if (i > 0u) {
         vec4 c = preintegrated(fp, sPrev, s, t - tPrev);
         if (kShading) c.rgb = shade(fp, c.rgb, c.a, cosine);
@@ -182,7 +202,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, flo
   }
   for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
-    float s = scalarAlongRay(fr, type, g, X, tIn, tOut, sIn, sOut, t, guess, cosine);
+    float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
     vec4 c = vec4(0.0);
     if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
       c = transferLookup(fp, s);
