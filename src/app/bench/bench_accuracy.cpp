@@ -171,8 +171,7 @@ void singleRankRungs(const AccuracyArgs& a, const Loaded& l, std::vector<Rung>& 
   s = l.base;
   s.earlyTermination = 0.99;
   rungs.push_back(oneRank("ET", "step h/2, early termination 0.99", ctx, scene, s, a.runs));
-  if (ctx.validationErrors())
-    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+  checkValidation(ctx);
 }
 
 // The rungs that need several ranks: list management, fragment encoding, compositing method.
@@ -313,10 +312,7 @@ void runAccuracyBench(const AccuracyArgs& a) {
   }
   report["load_average_after"] = machineJson()["load_average"];
   if (!a.json.empty()) writeJsonFile(a.json, report);
-  if (!a.markdown.empty())
-    writeBytesAtomically(a.markdown,
-                         std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(markdown.data()),
-                                                  markdown.size()));
+  if (!a.markdown.empty()) writeTextFile(a.markdown, markdown);
   if (!a.plot.empty()) writeParetoPlot(a.plot, panels, 2);
 }
 

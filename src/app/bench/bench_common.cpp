@@ -11,6 +11,9 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/parallel.h"
+#include "render/frame_defaults.h"
+#include "scene/camera.h"
+#include "scene/transfer_function.h"
 
 namespace sm::app::bench {
 namespace {
@@ -161,8 +164,31 @@ std::string Table::str() const {
 }
 
 void writeJsonFile(const std::string& path, const nlohmann::json& json) {
-  std::string text = json.dump(2) + "\n";
+  writeTextFile(path, json.dump(2) + "\n");
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
   writeBytesAtomically(path, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
+}
+
+render::RenderSettings isoFrame(const mesh::UnstructuredMesh& m, const mesh::Field& f,
+                                const std::string& colormap, int width, int height) {
+  render::RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(width) / height);
+  s.transferFunction = scene::makeTransferFunction(colormap);
+  const mesh::Range r = mesh::fieldRange(f, 0);
+  s.transferFunction.lo = r.lo;
+  s.transferFunction.hi = r.hi > r.lo ? r.hi : r.lo + 1;
+  s.transferFunction.unitDistance = render::defaultUnitDistance(m.bounds());
+  s.dt = render::defaultStep(render::elementSizeSum(m).mean());
+  return s;
+}
+
+void checkValidation(const vk::Context& ctx) {
+  if (ctx.validationErrors())
+    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
 }
 
 }  // namespace sm::app::bench

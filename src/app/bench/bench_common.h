@@ -11,6 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "gen/generate.h"
+#include "mesh/unstructured_mesh.h"
+#include "render/render_settings.h"
+#include "vk/context.h"
 
 namespace sm::app::bench {
 
@@ -45,6 +48,16 @@ class Table {
 };
 
 void writeJsonFile(const std::string& path, const nlohmann::json& json);
+// Text (a Markdown table) to `path`, written to a temporary name and renamed.
+void writeTextFile(const std::string& path, const std::string& text);
+
+// The frame the features and counts benchmarks render: `m` framed from the iso view, field `f`'s
+// step-0 range mapped through `colormap`, the default unit distance and step of `m`.
+render::RenderSettings isoFrame(const mesh::UnstructuredMesh& m, const mesh::Field& f,
+                                const std::string& colormap, int width, int height);
+
+// A benchmark that ran under the validation layer and saw errors must not report numbers.
+void checkValidation(const vk::Context& ctx);
 
 // Runs fn in a forked child and returns what it returned. The child starts from this process's
 // small footprint, so its peak resident size (after resetPeakResident) is the measured work's

@@ -46,23 +46,6 @@ std::string countMesh(const CountArgs& a) {
   return generatedMesh(a.workDir, o);
 }
 
-// The frame every virtual rank renders: the whole mesh framed from the iso view, the field's
-// range over the whole mesh, the default step from the whole mesh's element size.
-render::RenderSettings wholeFrame(const mesh::UnstructuredMesh& m, const mesh::Field& f,
-                                  const CountArgs& a, int w, int h) {
-  render::RenderSettings s;
-  s.width = w;
-  s.height = h;
-  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(w) / h);
-  s.transferFunction = scene::makeTransferFunction(a.colormap);
-  const mesh::Range r = mesh::fieldRange(f, 0);
-  s.transferFunction.lo = r.lo;
-  s.transferFunction.hi = r.hi > r.lo ? r.hi : r.lo + 1;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(m.bounds());
-  s.dt = render::defaultStep(render::elementSizeSum(m).mean());
-  return s;
-}
-
 struct DumpSummary {
   double seconds = 0;
   uint64_t fragments = 0, lostRays = 0;
@@ -174,7 +157,8 @@ void runCountBench(const CountArgs& a) {
                "float frag kB/rank mean", "max", "rgba8 mean", "max", "render imbal", "comp imbal",
                "render s"});
   for (const auto& [w, h] : sizes) {
-    const render::RenderSettings settings = wholeFrame(whole, *field, a, w, h);
+    // Every virtual rank renders the frame of the whole mesh.
+    const render::RenderSettings settings = isoFrame(whole, *field, a.colormap, w, h);
     for (uint64_t n : rankCounts) {
       const std::string dump =
           concat(dumpDir, "/counts-", std::filesystem::path(path).stem().string(), "-", n, "r-", w,
@@ -206,12 +190,8 @@ void runCountBench(const CountArgs& a) {
                            {"device", ctx.deviceName()},
                            {"mesh", path},
                            {"rows", rows}});
-  if (!a.markdown.empty())
-    writeBytesAtomically(
-        a.markdown,
-        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
-  if (ctx.validationErrors())
-    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+  if (!a.markdown.empty()) writeTextFile(a.markdown, text);
+  checkValidation(ctx);
 }
 
 }  // namespace

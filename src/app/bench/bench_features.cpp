@@ -49,16 +49,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, mesh::UnstructuredMesh
   const mesh::Field* f = m.findField(field);
   if (!f) throw Error(name, ": no point field '", field, "'");
   sc->values = f->steps[0];
-  mesh::Range r = mesh::fieldRange(*f, 0);
-  render::RenderSettings& s = sc->base;
-  s.width = w;
-  s.height = h;
-  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(w) / h);
-  s.transferFunction = scene::makeTransferFunction("cool-to-warm");
-  s.transferFunction.lo = r.lo;
-  s.transferFunction.hi = r.hi > r.lo ? r.hi : r.lo + 1;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(m.bounds());
-  s.dt = render::defaultStep(render::elementSizeSum(m).mean());
+  sc->base = isoFrame(m, *f, "cool-to-warm", w, h);
   sc->mesh = m;
   for (bool compact : {true, false}) {
     RankShare share;
@@ -229,12 +220,8 @@ void runFeatureBench(const FeatureArgs& a) {
                            {"rows", rows},
                            {"element_bytes",
                             {{"compacted", mem.compactedElements}, {"plain", mem.plainElements}}}});
-  if (!a.markdown.empty())
-    writeBytesAtomically(
-        a.markdown,
-        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
-  if (ctx.validationErrors())
-    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+  if (!a.markdown.empty()) writeTextFile(a.markdown, text);
+  checkValidation(ctx);
 }
 
 }  // namespace

@@ -294,8 +294,7 @@ void runRenderBench(const RenderArgs& a) {
   report["load_average_after"] = machineJson()["load_average"];
   printRenderTables(report);
   if (!a.json.empty()) writeJsonFile(a.json, report);
-  if (ctx.validationErrors())
-    throw Error("the Vulkan validation layer reported ", ctx.validationErrors(), " error(s)");
+  checkValidation(ctx);
 }
 
 }  // namespace
