@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "compositor/deep_compositor.h"
+
 namespace sm::comp {
 namespace {
 
@@ -89,6 +91,16 @@ void CountDumpReader::read(uint32_t rank, std::vector<uint32_t>& counts) {
   in_.seekg(std::streamoff(kHeaderBytes + uint64_t(rank) * pixels * 4));
   in_.read(reinterpret_cast<char*>(counts.data()), std::streamsize(pixels * 4));
   if (!in_) throw dumpError(path_, "read of rank " + std::to_string(rank) + " failed");
+}
+
+uint32_t dumpFrameCounts(DeepCompositor& compositor, const std::string& path) {
+  const std::vector<std::vector<uint32_t>> counts = compositor.gatherCounts();
+  if (counts.empty()) return 0;  // not rank 0
+  CountDumpWriter w(path, uint32_t(compositor.width()), uint32_t(compositor.height()),
+                    uint32_t(counts.size()));
+  for (const auto& c : counts) w.append(c);
+  w.close();
+  return uint32_t(counts.size());
 }
 
 }  // namespace sm::comp

@@ -18,6 +18,8 @@
 
 namespace sm::comp {
 
+class DeepCompositor;
+
 class CountDumpWriter {
  public:
   CountDumpWriter(const std::string& path, uint32_t width, uint32_t height, uint32_t ranks);
@@ -51,5 +53,9 @@ class CountDumpReader {
   std::ifstream in_;
   uint32_t width_ = 0, height_ = 0, ranks_ = 0;
 };
+
+// Collective: gathers every rank's counts of the compositor's last frame and writes them to `path`
+// on rank 0. Returns the number of ranks written on rank 0, 0 on the others.
+uint32_t dumpFrameCounts(DeepCompositor& compositor, const std::string& path);
 
 }  // namespace sm::comp

@@ -66,12 +66,8 @@ nlohmann::json measure(Communicator& comm, const vk::Context& ctx, const HostLis
 }
 
 void dumpCounts(DeepCompositor& compositor, const std::string& path, int size) {
-  std::vector<std::vector<uint32_t>> counts = compositor.gatherCounts();
-  if (counts.empty()) return;  // not rank 0
-  CountDumpWriter w(path, uint32_t(size), uint32_t(size), uint32_t(counts.size()));
-  for (const auto& c : counts) w.append(c);
-  w.close();
-  std::printf("wrote per-rank fragment counts of %dx%d to %s\n", size, size, path.c_str());
+  if (dumpFrameCounts(compositor, path) > 0)
+    std::printf("wrote per-rank fragment counts of %dx%d to %s\n", size, size, path.c_str());
 }
 
 void runAll(MpiCommunicator& comm, const RunOptions& o) {

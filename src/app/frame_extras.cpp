@@ -66,18 +66,14 @@ void writeCountHeatmaps(comp::DeepCompositor& compositor, const std::string& pre
 }
 
 // The frame's counts for replaying the exchange at other rank counts (compositor/replay.h).
-void dumpCounts(comp::DeepCompositor& compositor, const std::string& path, Collectives& coll) {
-  std::vector<std::vector<uint32_t>> counts = compositor.gatherCounts();
-  if (coll.rank() != 0) return;
+void dumpCounts(comp::DeepCompositor& compositor, const std::string& path) {
+  uint32_t ranks = 0;
   try {
-    comp::CountDumpWriter w(path, uint32_t(compositor.width()), uint32_t(compositor.height()),
-                            uint32_t(counts.size()));
-    for (const auto& c : counts) w.append(c);
-    w.close();
+    ranks = comp::dumpFrameCounts(compositor, path);
   } catch (const std::runtime_error& e) {
     throw Error("--dump-counts: ", e.what());
   }
-  log::info("wrote the fragment counts of ", counts.size(), " rank(s) to ", path);
+  if (ranks > 0) log::info("wrote the fragment counts of ", ranks, " rank(s) to ", path);
 }
 
 }  // namespace
@@ -102,8 +98,7 @@ void writeFrameExtras(const RenderJob& job, comp::DeepCompositor& compositor,
     compareMethods(job, compositor, image, framePath(job.l2Heatmap, step, sequence), coll);
   if (!job.heatmaps.empty())
     writeCountHeatmaps(compositor, framePath(job.heatmaps, step, sequence), coll);
-  if (!job.dumpCounts.empty())
-    dumpCounts(compositor, framePath(job.dumpCounts, step, sequence), coll);
+  if (!job.dumpCounts.empty()) dumpCounts(compositor, framePath(job.dumpCounts, step, sequence));
 }
 
 }  // namespace sm::app

@@ -49,6 +49,23 @@ run() {
   [ $status -ne 124 ] && [ $((ms / 1000)) -lt "$limit" ] || fail "$name did not end within ${limit}s (a hang)"
 }
 
+# ended_after_fault NAME: passes when every rank of run NAME ended within a minute of the logged
+# fault (ending is mpiexec's reaction to a dead process; a minute allows for a loaded machine).
+ended_after_fault() {
+  local late
+  late=$(after_fault "$1")
+  [ -n "$late" ] || fail "no line says the fault was injected"
+  python3 -c "import sys; sys.exit(0 if $late < 60 else 1)" || fail "ranks ended ${late}s after the fault"
+  pass "all ranks ended ${late}s after the fault"
+}
+
+# frames_after_fault_absent: frames 1 and 2 (rendered after a fault in frame 1) must not exist,
+# and every PNG under its final name must be whole.
+frames_after_fault_absent() {
+  python3 "$here/check_png.py" "$dir"/f_*.png || fail "a PNG under its final name is incomplete"
+  [ ! -e "$dir/f_0001.png" ] && [ ! -e "$dir/f_0002.png" ] || fail "a frame after the fault exists"
+}
+
 expect_in() {  # expect_in NAME TEXT: the run's output holds TEXT
   grep -qF -- "$2" "$dir/$1.log" || fail "'$2' is not in the output of $1"
 }
@@ -78,13 +95,8 @@ kill_rank)
   [ $status -ne 0 ] || fail "mpiexec succeeded although rank 1 was killed"
   grep -qiE "signal 9|killed" "$dir/render.log" || fail "the output does not say that a rank was killed"
   [ -f "$dir/f_0000.png" ] || fail "frame 0, complete before the fault, was not written"
-  python3 "$here/check_png.py" "$dir"/f_*.png || fail "a PNG under its final name is incomplete"
-  [ ! -e "$dir/f_0001.png" ] && [ ! -e "$dir/f_0002.png" ] || fail "a frame after the fault exists"
-  late=$(after_fault render)
-  [ -n "$late" ] || fail "no line says the fault was injected"
-  # Ending is mpiexec's reaction to a dead process; a minute allows for a loaded machine.
-  python3 -c "import sys; sys.exit(0 if $late < 60 else 1)" || fail "ranks ended ${late}s after the fault"
-  pass "all ranks ended ${late}s after the fault"
+  frames_after_fault_absent
+  ended_after_fault render
   ;;
 throw_rank)
   # An ordinary error on rank 2 in frame 1: every rank ends, with rank 2's message.
@@ -92,12 +104,8 @@ throw_rank)
     "${mpi3[@]}" "${render_args[@]}" --time all --out "$dir/f.png"
   [ $status -ne 0 ] || fail "mpiexec succeeded although rank 2 failed"
   expect_in render "rank 2 of 3 failed: injected fault on rank 2 in frame 1"
-  python3 "$here/check_png.py" "$dir"/f_*.png || fail "a PNG under its final name is incomplete"
-  [ ! -e "$dir/f_0001.png" ] && [ ! -e "$dir/f_0002.png" ] || fail "a frame after the fault exists"
-  late=$(after_fault render)
-  [ -n "$late" ] || fail "no line says the fault was injected"
-  python3 -c "import sys; sys.exit(0 if $late < 60 else 1)" || fail "ranks ended ${late}s after the fault"
-  pass "all ranks ended ${late}s after the fault"
+  frames_after_fault_absent
+  ended_after_fault render
   ;;
 corrupt_piece)
   # Piece 2's data is cut short (its header, which every rank reads to share pieces out, stays
