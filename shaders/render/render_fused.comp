@@ -4,8 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-#include "shell_query.glsl"
-#include "segment.glsl"
+#include "ray_loop.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
@@ -15,24 +14,12 @@ void main() {
   uvec2 px = gl_GlobalInvocationID.xy;
   bool inImage = px.x < fp.width && px.y < fp.height;
   SegmentStats st = noStats();
-  uint nseg = 0u;
+  uint nseg = 0u, fragments = 0u;
   DcListWriter wr = dcBegin(fp.fragments, 0u, 0u);
   if (inImage) {
     uint pixel = px.y * fp.width + px.x;
-    RayFrame fr = pixelRay(fp, px);
     wr = dcBegin(fp.fragments, pixel * fp.fragK, fp.fragK);
-    float prevEnd = 0.0, transmittance = 1.0;
-    Traversal tr = beginTraversal(fp);
-    Segment seg;
-    while (nseg < fp.maxSegments && nextSegment(fr, fp.scene, tr, seg)) {
-      nseg += 1u;
-      DcFragment frag;
-      if (integrateSegment(fr, fp, seg, prevEnd, frag, st)) {
-        dcWrite(wr, frag);
-        transmittance *= 1.0 - frag.color.a;
-        if (1.0 - transmittance >= fp.earlyTermination) break;
-      }
-    }
+    nseg = traceRay(pixelRay(fp, px), fp, pixel, fp.maxSegments, RAY_TO_LIST, false, 0u, wr, fragments, st);
     dcEnd(wr, fp.fragCounts, pixel);
   }
   flushStats(fp, st, nseg, wr.count, wr.overflow);

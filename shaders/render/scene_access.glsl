@@ -19,6 +19,7 @@ layout(buffer_reference, scalar) readonly buffer SmVec4s { vec4 v[]; };
 layout(buffer_reference, scalar) buffer SmUints { uint v[]; };
 layout(buffer_reference, scalar) readonly buffer SmUint64s { uint64_t v[]; };
 layout(buffer_reference, scalar) buffer SmSegments { Segment v[]; };
+layout(buffer_reference, scalar) buffer SmCachedSegments { CachedSegment v[]; };
 layout(buffer_reference, scalar) readonly buffer SmParams { FrameParams p; };
 layout(buffer_reference, scalar) buffer SmStats { RenderStats s; };
 

@@ -7,10 +7,10 @@
 #include "fragment_list.glsl"
 
 struct SegmentStats {
-  uint lost, grazing, walks, stepLimit, steps, samples, inside;
+  uint lost, grazing, walks, stepLimit, steps, samples, inside, boxExits;
 };
 
-SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u); }
+SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u); }
 
 // Integrates `seg`, sampling from max(its entry, prevEnd) on; returns false when the segment gives
 // no fragment (in device-triangle mode, the exact predicates may say the ray only grazes there).
@@ -57,6 +57,8 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
   if (st.walks != 0u) atomicAdd(s.s.entryWalks, st.walks);
   if (st.stepLimit != 0u) atomicAdd(s.s.stepLimitHits, st.stepLimit);
   if (st.inside != 0u) atomicAdd(s.s.cameraInside, st.inside);
+  uint boxExits = subgroupAdd(st.boxExits);
+  if (boxExits != 0u && subgroupElect()) atomicAdd(s.s.boxExits, boxExits);
   if (overflow != 0u) atomicAdd(s.s.overflow, overflow);
   uint steps = subgroupAdd(st.steps), samples = subgroupAdd(st.samples);
   uint segs = subgroupAdd(segments), frags = subgroupAdd(fragments);

@@ -39,6 +39,7 @@ struct FrameParams {
   uint64_t rays;              // 0: camera rays; else one RayDesc per "pixel" (width x 1 image)
   uint64_t preintegration;    // element-exact mode: vec4 colours [(l * bins + b) * bins + f]
   uint64_t piCumulative;      // ... and float cumulative extinction over [piLo, piHi]
+  uint64_t segCache;          // cached two-pass: CachedSegment per slot, segCacheK slots per pixel
   // Camera, rebased to the scene origin.
   vec3 eye;
   float tanHalfFovy;
@@ -48,6 +49,11 @@ struct FrameParams {
   uint width;
   vec3 upOrtho;
   uint height;
+  // This rank's bounding box (rebased): a segment that ends on it ends the ray's traversal.
+  vec3 boundsLo;
+  uint segCacheK;  // cached two-pass: slots per pixel (0: the stage-split passes are in use)
+  vec3 boundsHi;
+  uint boundsValid;
   // Sampling and transfer function.
   float dt;
   float tfLo;
@@ -88,6 +94,15 @@ struct Segment {
   uint exitTriangle;   // only for segments that start inside: the first exit
 };
 
+// Cached two-pass lists: what the first (counting) pass found and integrated for one segment, so
+// that the second pass copies it instead of traversing and marching again.
+struct CachedSegment {
+  Segment segment;
+  vec4 color;   // the segment's fragment: premultiplied rgba ...
+  float depth;  // ... and entry distance
+  uint hasFragment;
+};
+
 // Global counters (atomics) for --stats.
 struct RenderStats {
   uint lostRays;       // marches that lost their element (must be zero on hard cases)
@@ -100,15 +115,16 @@ struct RenderStats {
   uint elementSteps;  // elements visited (wraps on huge frames; for rates only)
   uint samples;       // samples taken (wraps on huge frames; for rates only)
   uint cameraInside;  // rays whose first segment starts at the camera
-  uint pad0;
+  uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
   uint pad1;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 14 * 8 + 10 * 8 + 4 * 16 + 22 * 4, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 14 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
+static_assert(sizeof(CachedSegment) == 40, "CachedSegment layout");
 static_assert(sizeof(RenderStats) == 48, "RenderStats layout");
 }  // namespace sm::gpu
 #endif

@@ -89,6 +89,8 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
   fr["samples"] = coll_.sum(uint64_t(f.counters.samples));
   fr["element_steps"] = coll_.sum(uint64_t(f.counters.elementSteps));
   fr["camera_inside_rays"] = coll_.sum(uint64_t(f.counters.cameraInside));
+  fr["box_exits"] = coll_.sum(uint64_t(f.counters.boxExits));
+  fr["fused"] = f.timings.fused;
   // Integration (traversal + marching) against compositing, slowest rank each.
   fr["integration_ms"] = coll_.max(f.timings.traversalMs + f.timings.scanMs + f.timings.marchMs);
   fr["compositing_ms"] = coll_.max(f.timings.compositeMs);
@@ -128,9 +130,14 @@ void StatsReport::printSetup() const {
 
 void StatsReport::printFrame(const nlohmann::json& fr) const {
   auto u = [&](const char* k) { return (unsigned long long)fr[k].get<uint64_t>(); };
+  // Fused frames trace (traverse and march) in one pass; a two-pass frame's second pass then
+  // copies what the first cached.
+  const bool fused = fr.value("fused", false);
   std::printf(
-      "  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
-      "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
+      fused ? "  step %llu: %.1f ms = trace (traversal + march) %.1f + scan %.1f + store %.1f + "
+              "composite %.1f (integration %.1f ms, compositing %.1f ms, slowest rank)\n"
+            : "  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
+              "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
       u("step"), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(),
       fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(), fr["composite_ms"].get<double>(),
       fr["integration_ms"].get<double>(), fr["compositing_ms"].get<double>());
@@ -143,9 +150,9 @@ void StatsReport::printFrame(const nlohmann::json& fr) const {
   std::printf(
       "    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow "
       "%llu; "
-      "%llu samples, %llu element steps\n",
+      "%llu samples, %llu element steps, %llu rays ended at the bounding box\n",
       u("lost_rays"), u("grazing_skips"), u("entry_corrections"), u("step_limit_hits"),
-      u("fragment_overflow"), u("samples"), u("element_steps"));
+      u("fragment_overflow"), u("samples"), u("element_steps"), u("box_exits"));
   if (coll_.size() > 1)
     for (const auto& r : fr["ranks"])
       std::printf(

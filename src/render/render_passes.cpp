@@ -65,6 +65,26 @@ void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h
   dispatchPixels(pipeline_, cmd, params, w, h);
 }
 
+CachedTwoPass::CachedTwoPass(const vk::Context& ctx, const GpuScene& scene,
+                             const comp::DeepCompositor& c, PassOptions options) {
+  auto spec = sceneSpecialization(ctx, scene, c, options);
+  auto countSpec = spec, storeSpec = spec;
+  countSpec.push_back({20, 0u});
+  storeSpec.push_back({20, 1u});
+  count_ = makePipeline(ctx, "trace and march (count, cache)", spv::render_cached(), countSpec,
+                        true, scene);
+  store_ =
+      makePipeline(ctx, "trace and march (store)", spv::render_cached(), storeSpec, true, scene);
+}
+
+void CachedTwoPass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(count_, cmd, params, w, h);
+}
+
+void CachedTwoPass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  dispatchPixels(store_, cmd, params, w, h);
+}
+
 FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
                      PassOptions options)
     : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),

@@ -1,5 +1,6 @@
-// The renderer's stages as pass objects (stage-split tracer): shell traversal (count / store
-// segments), marching (segments -> fragments), and the fused single pass used with fixed-length
+// The renderer's stages as pass objects: the stage-split tracer (shell traversal counting / storing
+// segments, then marching segments into fragments), the cached two-pass tracer (traversal and
+// marching fused, each ray traced once), and the fused single pass used with fixed-length
 // fragment lists. Each owns its pipeline, specialised to the scene and the compositor's lists.
 #pragma once
 
@@ -45,6 +46,20 @@ class MarchPass {
 
  private:
   vk::ComputePipeline pipeline_;
+};
+
+// Two-pass lists with one traversal (shaders/render/render_cached.comp): the count pass traces and
+// marches, caching each pixel's first segments and fragments; the store pass copies them into the
+// lists and traces again only the pixels with more segments than cache slots.
+class CachedTwoPass {
+ public:
+  CachedTwoPass(const vk::Context& ctx, const GpuScene& scene,
+                const comp::DeepCompositor& compositor, PassOptions options);
+  void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+  void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+
+ private:
+  vk::ComputePipeline count_, store_;
 };
 
 class FusedPass {

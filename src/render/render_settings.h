@@ -35,6 +35,11 @@ struct RenderSettings {
   double earlyTermination = 0.99;       // stop a ray once this opaque
   uint32_t maxSegments = 1u << 16;      // per ray: traversal bound
   uint32_t maxElementSteps = 1u << 16;  // per segment: march bound (real rays need far fewer)
+  // Two-pass lists: device memory for caching each pixel's first segments between the counting
+  // and the storing pass (up to 4 per pixel), so that each ray is traced once. When not even one
+  // slot per pixel fits, or with 0, the stage-split passes run instead (traversal twice, then
+  // marching), which also time traversal and marching apart.
+  uint64_t segmentCacheBytes = uint64_t(256) << 20;
   // Deep (exact, the paper's) or single-fragment compositing (IceT-like, for comparison).
   comp::CompositeMethod compositeMethod = comp::CompositeMethod::Deep;
 };

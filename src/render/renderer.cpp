@@ -25,8 +25,6 @@ glm::vec3 toFloat(const glm::dvec3& v) {
 
 Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor)
     : ctx_(ctx), scene_(scene), compositor_(compositor), timestamps_(ctx, 8) {
-  if (twoPass())
-    traversal_ = std::make_unique<TraversalPass>(ctx, scene, compositor, PassOptions{});
   params_ = vk::Buffer(ctx, sizeof(gpu::FrameParams), vk::kStorageUsage, vk::MemoryUse::Upload,
                        "frame params");
   stats_ = vk::Buffer(ctx, sizeof(gpu::RenderStats), vk::kStorageUsage, vk::MemoryUse::Readback,
@@ -36,6 +34,12 @@ Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepComp
 MarchPass& Renderer::marchPass(PassOptions options) {
   auto& p = march_[options.index()];
   if (!p) p = std::make_unique<MarchPass>(ctx_, scene_, compositor_, options);
+  return *p;
+}
+
+CachedTwoPass& Renderer::cachedPass(PassOptions options) {
+  auto& p = cached_[options.index()];
+  if (!p) p = std::make_unique<CachedTwoPass>(ctx_, scene_, compositor_, options);
   return *p;
 }
 
@@ -89,6 +93,11 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   bool inBounds = !b.empty && glm::all(glm::greaterThanEqual(eye, b.lo - pad)) &&
                   glm::all(glm::lessThanEqual(eye, b.hi + pad));
   p.eyeMayBeInside = (useRays_ || inBounds) ? 1u : 0u;
+  p.boundsValid = b.empty ? 0u : 1u;
+  if (!b.empty) {
+    p.boundsLo = glm::vec3(b.lo);
+    p.boundsHi = glm::vec3(b.hi);
+  }
   p.eye = toFloat(cam.eye - scene_.origin());
   p.forward = toFloat(cam.forward);
   p.right = toFloat(cam.right);
@@ -120,7 +129,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.shadeShininess = float(sh.shininess);
   }
   p.maxElementSteps = s.maxElementSteps;
-  p.maxSegments = s.maxSegments;
+  p.maxSegments = getenv("SM_MAXSEG") ? atoi(getenv("SM_MAXSEG")) : s.maxSegments;
   comp::DeviceLists lists = compositor_.lists();
   p.segCounts = lists.capacities;
   p.segOffsets = lists.offsets;
@@ -178,7 +187,9 @@ FrameResult Renderer::render(const RenderSettings& s) {
   FrameResult out;
   const gpu::RenderStats zero{};
   stats_.upload(&zero, sizeof zero);
-  if (traversal_)
+  if (twoPass() && segmentCacheSlots(s) > 0)
+    renderCached(s, p, out);
+  else if (twoPass())
     renderTwoPass(s, p, out);
   else
     renderFixed(s, p, out);
@@ -194,6 +205,8 @@ FrameResult Renderer::render(const RenderSettings& s) {
 
 void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   // Pass 1: count each pixel's segments (the compositor's list capacities).
+  if (!traversal_)
+    traversal_ = std::make_unique<TraversalPass>(ctx_, scene_, compositor_, PassOptions{});
   writeParams(p);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
@@ -208,12 +221,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
   lastSegmentTotal_ = out.segments;
   out.timings.scanMs = msSince(t0);
   // Pass 2: store the segments at the scanned offsets, then march them into fragments.
-  const uint64_t segBytes = std::max<uint64_t>(out.segments, 1) * sizeof(gpu::Segment);
-  if (!segments_.valid() || segments_.size() < segBytes)
-    segments_ = vk::Buffer(ctx_, segBytes + segBytes / 4, vk::kStorageUsage, vk::MemoryUse::Device,
-                           "segments");
-  p.segments = segments_.address();
-  p.fragments = compositor_.lists().fragments;
+  ensureSegments(p, out.segments);
   writeParams(p);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
@@ -229,6 +237,58 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
   out.timings.marchMs = timestamps_.ms(ts, 1, 2);
 }
 
+uint32_t Renderer::segmentCacheSlots(const RenderSettings& s) const {
+  constexpr uint64_t kMaxSlots = 4;  // most rays of a rank have fewer segments
+  const uint64_t slotBytes = uint64_t(s.width) * uint64_t(s.height) * sizeof(gpu::CachedSegment);
+  return uint32_t(std::min(kMaxSlots, s.segmentCacheBytes / std::max<uint64_t>(slotBytes, 1)));
+}
+
+void Renderer::ensureSegments(gpu::FrameParams& p, uint64_t segments) {
+  const uint64_t segBytes = std::max<uint64_t>(segments, 1) * sizeof(gpu::Segment);
+  if (!segments_.valid() || segments_.size() < segBytes)
+    segments_ = vk::Buffer(ctx_, segBytes + segBytes / 4, vk::kStorageUsage, vk::MemoryUse::Device,
+                           "segments");
+  p.segments = segments_.address();
+  p.fragments = compositor_.lists().fragments;
+}
+
+void Renderer::renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
+  out.timings.fused = true;
+  p.segCacheK = segmentCacheSlots(s);
+  const uint64_t cacheBytes =
+      uint64_t(s.width) * uint64_t(s.height) * p.segCacheK * sizeof(gpu::CachedSegment);
+  if (!segmentCache_.valid() || segmentCache_.size() < cacheBytes)
+    segmentCache_ =
+        vk::Buffer(ctx_, cacheBytes, vk::kStorageUsage, vk::MemoryUse::Device, "segment cache");
+  p.segCache = segmentCache_.address();
+  CachedTwoPass& pass = cachedPass(passOptions_);
+  // Pass 1: trace and march every ray, cache its first segments, count them.
+  writeParams(p);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    pass.recordCount(cmd, params_.address(), s.width, s.height);
+    timestamps_.write(cmd, 1);
+  });
+  auto ts = timestamps_.results(2);
+  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
+  auto t0 = std::chrono::steady_clock::now();
+  out.segments = compositor_.prepareLists();
+  lastSegmentTotal_ = out.segments;
+  out.timings.scanMs = msSince(t0);
+  // Pass 2: copy into the lists at the scanned offsets (tracing again where the cache was short).
+  ensureSegments(p, out.segments);
+  writeParams(p);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    pass.recordStore(cmd, params_.address(), s.width, s.height);
+    timestamps_.write(cmd, 1);
+  });
+  ts = timestamps_.results(2);
+  out.timings.marchMs = timestamps_.ms(ts, 0, 1);
+}
+
 void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   writeParams(p);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
@@ -239,10 +299,11 @@ void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameRe
   });
   auto ts = timestamps_.results(2);
   out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
+  out.timings.fused = true;
 }
 
 std::vector<uint32_t> Renderer::lastSegmentCounts() const {
-  if (!traversal_) return {};
+  if (!twoPass()) return {};
   std::vector<uint32_t> v(uint64_t(compositor_.width()) * compositor_.height());
   compositor_.downloadCapacities(v);
   return v;
@@ -250,7 +311,7 @@ std::vector<uint32_t> Renderer::lastSegmentCounts() const {
 
 std::vector<std::vector<gpu::Segment>> Renderer::lastSegments() const {
   std::vector<std::vector<gpu::Segment>> out;
-  if (!traversal_ || !segments_.valid()) return out;
+  if (!twoPass() || !segments_.valid()) return out;
   std::vector<uint32_t> counts = lastSegmentCounts();
   std::vector<gpu::Segment> all(lastSegmentTotal_);
   segments_.download(all.data(), all.size() * sizeof(gpu::Segment));

@@ -21,9 +21,13 @@ struct WorldRay {
 };
 
 struct FrameTimings {
-  double traversalMs = 0;  // both traversal passes (two-pass) or the fused pass (fixed lists)
-  double scanMs = 0;       // prefix sum over the counts, and the host round trip for the total
-  double marchMs = 0;      // marching (0 for fixed lists: fused into traversalMs)
+  // Stage-split two-pass frames time traversal (both passes) and marching apart. Where the two
+  // are fused (`fused`: cached two-pass lists, fixed lists) traversalMs is the pass that traces
+  // and marches, and marchMs the cached store pass (0 for fixed lists).
+  double traversalMs = 0;
+  double scanMs = 0;  // prefix sum over the counts, and the host round trip for the total
+  double marchMs = 0;
+  bool fused = false;
   double compositeMs = 0;
   double totalMs = 0;  // wall clock of render()
 };
@@ -56,6 +60,10 @@ class Renderer {
  private:
   gpu::FrameParams frameParams(const RenderSettings& s) const;
   void renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
+  void renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
+  // Segment cache slots per pixel that s.segmentCacheBytes allows (0: stage-split passes).
+  uint32_t segmentCacheSlots(const RenderSettings& s) const;
+  void ensureSegments(gpu::FrameParams& p, uint64_t segments);
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
   void writeParams(const gpu::FrameParams& p);
 
@@ -68,14 +76,16 @@ class Renderer {
   void updatePreintegration(const RenderSettings& s);
   bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
 
+  CachedTwoPass& cachedPass(PassOptions options);
   std::unique_ptr<TraversalPass> traversal_;
+  std::unique_ptr<CachedTwoPass> cached_[PassOptions::kCombinations];
   std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
   std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
   PassOptions passOptions_;  // of the frame being rendered
   vk::Buffer preintegration_;
   uint64_t preintegrationKey_ = 0;
   PreintegrationTable preintegrationTable_;
-  vk::Buffer params_, stats_, transferFunction_, segments_, rays_;
+  vk::Buffer params_, stats_, transferFunction_, segments_, segmentCache_, rays_;
   uint64_t lastSegmentTotal_ = 0;
   bool useRays_ = false;
   vk::TimestampQueries timestamps_;

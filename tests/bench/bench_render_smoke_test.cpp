@@ -39,6 +39,17 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
   // shellmarch samples the grid the reference samples: its image is the grid reference's.
   EXPECT_LT(j["sizes"][0]["errors"]["shellmarch compacted"]["grid"]["max_abs"].get<double>(), 0.02);
   EXPECT_EQ(j["sizes"][0]["compacted_vs_plain_max_abs"].get<double>(), 0.0);
+  // The default traces each ray once (fused); the stage-split row times traversal and marching
+  // apart and gives the same image.
+  const auto& size0 = j["sizes"][0];
+  EXPECT_TRUE(size0["shellmarch"]["compacted"]["fused"].get<bool>());
+  const auto& split = size0["shellmarch"]["compacted_coarser"][0];
+  EXPECT_EQ(split["label"].get<std::string>(), "shellmarch compacted stage-split");
+  EXPECT_FALSE(split["fused"].get<bool>());
+  EXPECT_GT(split["stages_ms"]["march"].get<double>(), 0.0);
+  EXPECT_EQ(size0["errors"]["shellmarch compacted stage-split"]["grid"]["rmse"].get<double>(),
+            size0["errors"]["shellmarch compacted"]["grid"]["rmse"].get<double>());
+  EXPECT_NE(log.find("stage-split"), std::string::npos) << log;
   if (vtkAvailable()) {
     ASSERT_TRUE(j["vtk"]["available"].get<bool>()) << j["vtk"].dump();
     EXPECT_EQ(missingKeys(j, {"vtk.sizes.0.integrators.0.warm_ms",

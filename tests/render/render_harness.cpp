@@ -47,6 +47,7 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::vector<flo
   out.image = scene::Image(settings.width, settings.height);
   out.image.pixels = out.frame.pixels;
   out.segments = renderer.lastSegments();
+  out.fragments = renderer.lastFragments();
   out.validationErrors = ctx.validationErrors();
   out.validationWarnings = ctx.validationWarnings();
   return out;

@@ -16,7 +16,8 @@ struct GpuRender {
   scene::Image image;
   render::FrameResult frame;
   uint64_t validationErrors = 0, validationWarnings = 0;
-  std::vector<std::vector<gpu::Segment>> segments;  // per pixel (two-pass lists)
+  std::vector<std::vector<gpu::Segment>> segments;       // per pixel (two-pass lists)
+  std::vector<std::vector<comp::DcFragment>> fragments;  // per pixel, list order
 };
 
 struct GpuRenderOptions {

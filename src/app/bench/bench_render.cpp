@@ -121,6 +121,19 @@ std::vector<std::string> splitList(const std::string& s) {
 void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::GpuScene& compact,
                     const render::RenderSettings& s, nlohmann::json& j, RenderImages& images) {
   j["shellmarch"]["compacted_coarser"] = nlohmann::json::array();
+  // The stage-split tracer at the default step: traversal and marching timed apart, and what
+  // tracing each ray once (the default) saves.
+  {
+    render::RenderSettings split = s;
+    split.segmentCacheBytes = 0;
+    RenderMeasurement m = measureRender(ctx, compact, split, a.runs);
+    nlohmann::json mj = toJson(m);
+    mj["dt_scale"] = 1.0;
+    mj["dt"] = split.dt;
+    mj["label"] = "shellmarch compacted stage-split";
+    j["shellmarch"]["compacted_coarser"].push_back(mj);
+    images.renderers.emplace_back(mj["label"].get<std::string>(), std::move(m.image));
+  }
   for (const std::string& item : splitList(a.coarser)) {
     const double k = parsePositive("--coarser", item);
     render::RenderSettings sk = s;

@@ -50,6 +50,8 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
   m.segments = frame.counters.segments;
   m.fragments = frame.counters.fragments;
   m.lostRays = frame.counters.lostRays;
+  m.boxExits = frame.counters.boxExits;
+  m.fused = frame.timings.fused;
   m.image = scene::Image(s.width, s.height);
   m.image.pixels = std::move(frame.pixels);
   return m;
@@ -72,6 +74,8 @@ nlohmann::json toJson(const RenderMeasurement& m) {
   j["segments"] = m.segments;
   j["fragments"] = m.fragments;
   j["lost_rays"] = m.lostRays;
+  j["box_exits"] = m.boxExits;
+  j["fused"] = m.fused;
   j["stages_ms"] = {{"traversal", median(m.traversalMs)},
                     {"scan", median(m.scanMs)},
                     {"march", median(m.marchMs)},

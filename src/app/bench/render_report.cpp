@@ -97,29 +97,43 @@ std::string ms(const nlohmann::json& v) {
   return fixed(v.get<double>(), 1);
 }
 
+// Stage cells: trace (traversal and marching: one fused pass, or their sum when stage-split),
+// traversal alone and march alone (stage-split only), scan, store (the cached lists' copy pass,
+// fused only), composite.
+std::vector<std::string> stageCells(const nlohmann::json& m) {
+  const auto& st = m["stages_ms"];
+  const double trav = st["traversal"].get<double>(), march = st["march"].get<double>();
+  if (m.value("fused", false))
+    return {fixed(trav, 1), "-", "-", ms(st["scan"]), fixed(march, 1), ms(st["composite"])};
+  return {fixed(trav + march, 1), fixed(trav, 1), fixed(march, 1), ms(st["scan"]), "-",
+          ms(st["composite"])};
+}
+
+void speedRow(Table& t, const std::string& size, const std::string& label,
+              const nlohmann::json& m) {
+  std::vector<std::string> row = {size,
+                                  label,
+                                  ms(m["cold_first_frame_ms"]),
+                                  ms(m["warm_ms"]),
+                                  ms(m["warm_cpu_ms"]),
+                                  fixed(m["frames_per_second"].get<double>(), 2),
+                                  fixed(m["samples_per_second"].get<double>() / 1e6, 1),
+                                  fixed(m["element_steps_per_second"].get<double>() / 1e6, 1)};
+  for (std::string& c : stageCells(m)) row.push_back(std::move(c));
+  t.add(row);
+}
+
 void speedRows(Table& t, const nlohmann::json& s, const nlohmann::json* vtkSize) {
   const std::string size = sizeName(s["width"].get<int>(), s["height"].get<int>());
-  for (const char* mode : {"compacted", "plain"}) {
-    const auto& m = s["shellmarch"][mode];
-    const auto& st = m["stages_ms"];
-    t.add({size, concat("shellmarch ", mode), ms(m["cold_first_frame_ms"]), ms(m["warm_ms"]),
-           ms(m["warm_cpu_ms"]), fixed(m["frames_per_second"].get<double>(), 2),
-           fixed(m["samples_per_second"].get<double>() / 1e6, 1),
-           fixed(m["element_steps_per_second"].get<double>() / 1e6, 1), ms(st["traversal"]),
-           ms(st["scan"]), ms(st["march"]), ms(st["composite"])});
-  }
+  for (const char* mode : {"compacted", "plain"})
+    speedRow(t, size, concat("shellmarch ", mode), s["shellmarch"][mode]);
   for (const auto& m : s["shellmarch"]["compacted_coarser"])
-    t.add({size, m["label"].get<std::string>(), ms(m["cold_first_frame_ms"]), ms(m["warm_ms"]),
-           ms(m["warm_cpu_ms"]), fixed(m["frames_per_second"].get<double>(), 2),
-           fixed(m["samples_per_second"].get<double>() / 1e6, 1),
-           fixed(m["element_steps_per_second"].get<double>() / 1e6, 1),
-           ms(m["stages_ms"]["traversal"]), ms(m["stages_ms"]["scan"]), ms(m["stages_ms"]["march"]),
-           ms(m["stages_ms"]["composite"])});
+    speedRow(t, size, m["label"].get<std::string>(), m);
   if (!vtkSize) return;
   for (const auto& v : (*vtkSize)["integrators"])
     t.add({size, "VTK " + v["integrator"].get<std::string>(), ms(v["cold_first_frame_ms"]),
            ms(v["warm_ms"]), ms(v["warm_cpu_ms"]), fixed(1e3 / v["warm_ms"].get<double>(), 2), "-",
-           "-", "-", "-", "-", "-"});
+           "-", "-", "-", "-", "-", "-", "-"});
 }
 
 void errorRows(Table& t, const nlohmann::json& s) {
@@ -209,10 +223,10 @@ void addErrorsAndGoals(nlohmann::json& report, const std::vector<RenderImages>& 
 
 void printRenderTables(const nlohmann::json& r) {
   printSetup(r);
-  Table speed(
-      {"size", "renderer", "cold first frame ms", "warm frame ms", "CPU ms/frame", "frames/s",
-       "M samples/s", "M element steps/s", "traversal ms", "scan ms", "march ms", "composite ms"},
-      2);
+  Table speed({"size", "renderer", "cold first frame ms", "warm frame ms", "CPU ms/frame",
+               "frames/s", "M samples/s", "M element steps/s", "trace ms", "traversal ms",
+               "march ms", "scan ms", "store ms", "composite ms"},
+              2);
   Table errors({"size", "image", "RMSE vs grid", "max abs", "PSNR dB", "RMSE vs converged",
                 "max abs", "PSNR dB"},
                2);
@@ -225,7 +239,9 @@ void printRenderTables(const nlohmann::json& r) {
   }
   std::printf(
       "\nWarm frames: median of %d (shellmarch) and %d (VTK) after one cold frame; stage times "
-      "from device timestamps\n\n%s",
+      "from device timestamps. trace = traversal and marching: one fused pass per ray, whose "
+      "first segments are cached for the store pass (the default), or, stage-split, traversal "
+      "(counting and storing segments: twice) then marching, timed apart\n\n%s",
       r["options"]["runs"].get<int>(), r["options"]["vtk_runs"].get<int>(), speed.str().c_str());
   std::printf(
       "\nError against the CPU reference (premultiplied RGBA, all four channels; grid: samples "

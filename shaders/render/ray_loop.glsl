@@ -1,0 +1,70 @@
+// One ray's segments, traversed and marched together: each segment is integrated as soon as
+// traversal finds it, so the ray stops at the first of: no entry left, early termination, or a
+// segment that leaves through this rank's bounding box (nothing of the rank lies beyond it, so
+// the query that would only confirm "no entry left" is skipped; for a CFD far field, usually a
+// box, that is most rays and about half the shell queries).
+#ifndef SM_RAY_LOOP_GLSL
+#define SM_RAY_LOOP_GLSL
+
+#include "shell_query.glsl"
+#include "segment.glsl"
+
+// Where the ray leaves this rank's bounding box.
+float boxExit(RayFrame fr, FrameParams fp) {
+  if (fp.boundsValid == 0u) return 3.0e38;
+  float t = 3.0e38;
+  for (int i = 0; i < 3; ++i) {
+    if (fr.dir[i] == 0.0) continue;  // parallel to these faces: they bound nothing
+    float far = ((fr.dir[i] > 0.0 ? fp.boundsHi[i] : fp.boundsLo[i]) - fr.org[i]) / fr.dir[i];
+    t = min(t, far);
+  }
+  return t;
+}
+
+// True once a walk that ended at tEnd has left the box: the exact walk and the float box test
+// round differently, so within a few ulps of the box counts as on it (what could lie between is
+// a sliver far thinner than any sample spacing).
+bool pastBox(float tEnd, float tBox) {
+  return tEnd >= tBox - 4.0e-6 * abs(tBox);
+}
+
+// Where the segments go: into the pixel's fragment list (fixed-length lists; overflow pixels of
+// cached two-pass lists, which also store their segments), or into the pixel's cache slots.
+const uint RAY_TO_LIST = 0u;
+const uint RAY_TO_CACHE = 1u;
+
+// Traces pixel `pixel`'s ray up to `cap` segments; returns how many it found. `fragments` counts
+// the fragments a list would keep (non-zero opacity).
+uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool storeSegments,
+              uint segBase, inout DcListWriter wr, inout uint fragments, inout SegmentStats st) {
+  float tBox = boxExit(fr, fp);
+  float prevEnd = 0.0, transmittance = 1.0;
+  Traversal tr = beginTraversal(fp);
+  Segment seg;
+  uint n = 0u;
+  while (n < cap && nextSegment(fr, fp.scene, tr, seg)) {
+    DcFragment frag;
+    bool has = integrateSegment(fr, fp, seg, prevEnd, frag, st);
+    if (storeSegments) SmSegments(fp.segments).v[segBase + n] = seg;
+    if (sink == RAY_TO_CACHE) {
+      if (n < fp.segCacheK)
+        SmCachedSegments(fp.segCache).v[pixel * fp.segCacheK + n] =
+            CachedSegment(seg, frag.color, frag.depth, has ? 1u : 0u);
+    } else if (has) {
+      dcWrite(wr, frag);
+    }
+    n += 1u;
+    if (has && frag.color.a > 0.0) fragments += 1u;
+    if (has) {
+      transmittance *= 1.0 - frag.color.a;
+      if (1.0 - transmittance >= fp.earlyTermination) break;
+    }
+    if (pastBox(prevEnd, tBox)) {
+      st.boxExits += 1u;
+      break;
+    }
+  }
+  return n;
+}
+
+#endif

@@ -1,0 +1,129 @@
+// The two ways a two-pass frame traces its rays must give the same lists: the cached tracer (each
+// ray traversed and marched once, the first segments cached between the passes, rays with more
+// segments than cache slots traced again) and the stage-split tracer (traversal twice, then
+// marching). And the traversal's stop at the rank's bounding box must only skip what is empty.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "mesh/mesh_builder.h"
+#include "render_harness.h"
+#include "test_meshes.h"
+
+namespace sm::render {
+namespace {
+
+using ref::test::Split;
+
+// Slabs along z with gaps (one shell each, unwelded) behind a block: rays get 0 to 6 segments.
+mesh::UnstructuredMesh layeredSlabs() {
+  mesh::UnstructuredMesh m = ref::test::cubeMesh(Split::Tets5, 2, 1.0, {0, 0, 0});
+  for (int k = 0; k < 5; ++k)
+    mesh::append(m, ref::test::cubeMesh(k % 2 ? Split::Hex : Split::Tets6, 2, 0.6,
+                                        {0.1 * k, 0.05 * k, 1.3 + 0.8 * k}));
+  return m;
+}
+
+RenderSettings slabSettings(double earlyTermination) {
+  RenderSettings s;
+  s.width = s.height = 40;
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = -1;
+  s.transferFunction.hi = 2;
+  s.transferFunction.unitDistance = 0.4;
+  s.dt = 0.017;
+  s.earlyTermination = earlyTermination;
+  s.camera.eye = {0.45, 0.4, -2.5};
+  s.camera.at = {0.55, 0.5, 3.0};
+  s.camera.up = {0, 1, 0};
+  s.camera.fovyDeg = 35;
+  return s;
+}
+
+uint64_t cacheBytesForSlots(const RenderSettings& s, uint64_t slots) {
+  return uint64_t(s.width) * s.height * slots * sizeof(gpu::CachedSegment);
+}
+
+bool sameBits(const void* a, const void* b, size_t n) {
+  return std::memcmp(a, b, n) == 0;
+}
+
+void expectSameFrames(const std::string& name, const test::GpuRender& a, const test::GpuRender& b,
+                      bool compareSegments) {
+  ASSERT_EQ(a.fragments.size(), b.fragments.size()) << name;
+  size_t differing = 0;
+  for (size_t p = 0; p < a.fragments.size(); ++p) {
+    const auto &fa = a.fragments[p], &fb = b.fragments[p];
+    if (fa.size() != fb.size() || !sameBits(fa.data(), fb.data(), fa.size() * sizeof(fa[0])))
+      ++differing;
+    if (!compareSegments) continue;
+    const auto &sa = a.segments[p], &sb = b.segments[p];
+    if (sa.size() != sb.size() || !sameBits(sa.data(), sb.data(), sa.size() * sizeof(sa[0])))
+      ++differing;
+  }
+  EXPECT_EQ(differing, 0u) << name << ": pixels whose lists differ";
+  EXPECT_TRUE(sameBits(a.image.pixels.data(), b.image.pixels.data(),
+                       a.image.pixels.size() * sizeof(a.image.pixels[0])))
+      << name;
+  EXPECT_EQ(a.validationErrors + b.validationErrors, 0u) << name;
+  EXPECT_EQ(a.frame.counters.lostRays + b.frame.counters.lostRays, 0u) << name;
+}
+
+// Cache of 4 slots (default), 1 slot (most rays here are traced again in the store pass) and none
+// (stage-split): bit-identical fragments, segments and images. Without early termination the
+// segment lists are complete in every mode; with it, the fragments still agree.
+TEST(TracingModes, CachedAndStageSplitListsAreIdentical) {
+  auto m = layeredSlabs();
+  auto f =
+      ref::test::pointField(m, [](const glm::dvec3& p) { return p.x - 0.5 * p.y + 0.2 * p.z; });
+  for (double et : {2.0, 0.99}) {
+    RenderSettings s = slabSettings(et);
+    if (et < 1.0) s.transferFunction.opacityScale = 40;  // most rays end inside the first slabs
+    RenderSettings split = s, one = s;
+    split.segmentCacheBytes = 0;
+    one.segmentCacheBytes = cacheBytesForSlots(s, 1);
+    auto cached = test::renderOnGpu(m, f, s), single = test::renderOnGpu(m, f, one),
+         stageSplit = test::renderOnGpu(m, f, split);
+    EXPECT_TRUE(cached.frame.timings.fused);
+    EXPECT_FALSE(stageSplit.frame.timings.fused);
+    size_t maxSegments = 0;
+    for (const auto& p : stageSplit.segments) maxSegments = std::max(maxSegments, p.size());
+    EXPECT_GE(maxSegments, et > 1.0 ? 5u : 1u);  // rays that overflow a one-slot cache exist
+    std::string name = "early_termination_" + std::to_string(et);
+    expectSameFrames(name + "_cache4", cached, stageSplit, et > 1.0);
+    expectSameFrames(name + "_cache1", single, stageSplit, et > 1.0);
+    test::expectImagesClose(name, test::renderReference(m, f, s), cached.image);
+  }
+}
+
+// Rays leaving a box-shaped volume end their traversal there (no query for entries beyond); rays
+// leaving the front block between the slabs go on and find them, and the image matches the
+// reference either way.
+TEST(TracingModes, TraversalEndsAtTheBoundingBoxOnly) {
+  // One cube: every ray that enters leaves through the bounding box.
+  auto cube = ref::test::cubeMesh(Split::Tets6, 3);
+  auto fc = ref::test::pointField(cube, [](const glm::dvec3& p) { return p.x + p.y * p.z; });
+  RenderSettings s = slabSettings(2.0);
+  s.camera.eye = {2.1, 1.7, -1.6};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.camera.up = {0, 0, 1};
+  auto g = test::renderOnGpu(cube, fc, s);
+  EXPECT_GT(g.frame.counters.segments, 0u);
+  EXPECT_EQ(g.frame.counters.boxExits, g.frame.counters.segments);
+  test::expectImagesClose("box_exit_cube", test::renderReference(cube, fc, s), g.image);
+  // Block and slabs: a ray through the block exits through its back face, inside the box.
+  auto m = layeredSlabs();
+  auto f =
+      ref::test::pointField(m, [](const glm::dvec3& p) { return p.x - 0.5 * p.y + 0.2 * p.z; });
+  RenderSettings t = slabSettings(2.0);
+  auto h = test::renderOnGpu(m, f, t);
+  EXPECT_GT(h.frame.counters.boxExits, 0u);
+  EXPECT_LT(h.frame.counters.boxExits, h.frame.counters.segments);
+  size_t pixelsWithSlabs = 0;
+  for (const auto& p : h.segments) pixelsWithSlabs += p.size() >= 3 ? 1 : 0;
+  EXPECT_GT(pixelsWithSlabs, 50u);
+  test::expectImagesClose("box_exit_slabs", test::renderReference(m, f, t), h.image);
+}
+
+}  // namespace
+}  // namespace sm::render
