@@ -23,7 +23,7 @@ void copyCached(FrameParams fp, uint pixel, uint base, uint n, inout DcListWrite
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  uvec2 px = gl_GlobalInvocationID.xy;
+  uvec2 px = tiledPixel();
   bool inImage = px.x < fp.width && px.y < fp.height;
   uint pixel = px.y * fp.width + px.x;
   SegmentStats st = noStats();

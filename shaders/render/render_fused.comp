@@ -11,7 +11,7 @@ layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  uvec2 px = gl_GlobalInvocationID.xy;
+  uvec2 px = tiledPixel();
   bool inImage = px.x < fp.width && px.y < fp.height;
   SegmentStats st = noStats();
   uint nseg = 0u, fragments = 0u;

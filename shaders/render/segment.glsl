@@ -72,6 +72,16 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
 
 layout(buffer_reference, scalar) readonly buffer SmRays { RayDesc v[]; };
 
+// The pixel of this invocation in 8 x 8 workgroups: invocations in Morton order, so that each run
+// of 8 (one SIMD batch on lavapipe's 256-bit vectors, a quarter of a warp elsewhere) is a 4 x 2
+// block whose rays stay closer together than a row's.
+uvec2 tiledPixel() {
+  uint i = gl_LocalInvocationIndex;
+  uint x = (i & 1u) | ((i >> 1u) & 2u) | ((i >> 2u) & 4u);
+  uint y = ((i >> 1u) & 1u) | ((i >> 2u) & 2u) | ((i >> 3u) & 4u);
+  return gl_WorkGroupID.xy * 8u + uvec2(x, y);
+}
+
 RayFrame pixelRay(FrameParams fp, uvec2 px) {
   if (fp.rays != 0ul) {
     RayDesc r = SmRays(fp.rays).v[px.y * fp.width + px.x];

@@ -165,9 +165,14 @@ float scalarAlongRay(RayFrame fr, uint type, vec3 W0, vec3 X[8], float S[8], vec
 // What the element crossed over [tIn, tOut) adds within [a, b): its samples on the global grid,
 // or in element-exact mode the whole piece, pre-integrated (shaded with the cosine at its end).
 // tetGrad: a tetrahedron's gradient (shading only); g: the geometry of any other element.
+// kNext: the first grid sample at or after a, or kNoSample to have it computed; on return, the
+// first at or after b (elements along a walk are contiguous, so the next element starts there and
+// the division and search of firstSample run once per walk, not once per element).
+const uint kNoSample = 0xFFFFFFFFu;
+
 void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec3 tetGrad, float tIn,
                       float tOut, float sIn, float sOut, float a, float b, inout vec3 guess, inout vec4 acc,
-                      inout uint samples) {
+                      inout uint samples, inout uint kNext) {
   float dt = fp.dt;
   // Newton works relative to the element's first vertex: small numbers, better conditioned. Zero
   // past the element's vertices (see interpolate.glsl).
@@ -200,7 +205,8 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
     }
     return;
   }
-  for (uint k = firstSample(a, dt); sampleT(k, dt) < b; ++k) {
+  uint k = kNext != kNoSample ? kNext : firstSample(a, dt);
+  for (; sampleT(k, dt) < b; ++k) {
     float t = sampleT(k, dt);
     float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
     vec4 c = vec4(0.0);
@@ -214,6 +220,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
     samples += 1u;
     if (acc.a >= fp.earlyTermination) return;
   }
+  kNext = k;
 }
 
 #endif

@@ -14,7 +14,7 @@ layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  uvec2 px = gl_GlobalInvocationID.xy;
+  uvec2 px = tiledPixel();
   if (px.x >= fp.width || px.y >= fp.height) return;
   uint pixel = px.y * fp.width + px.x;
   RayFrame fr = pixelRay(fp, px);
