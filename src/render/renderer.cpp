@@ -9,6 +9,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/hash.h"
+#include "vk/vk_error.h"
 
 namespace sm::render {
 namespace {
@@ -187,7 +188,9 @@ FrameResult Renderer::render(const RenderSettings& s) {
   FrameResult out;
   const gpu::RenderStats zero{};
   stats_.upload(&zero, sizeof zero);
-  if (twoPass() && segmentCacheSlots(s) > 0)
+  const uint32_t slots = twoPass() ? segmentCacheSlots(s) : 0;
+  if (slots > 0 && ensureSegmentCache(uint64_t(s.width) * uint64_t(s.height) * slots *
+                                      sizeof(gpu::CachedSegment)))
     renderCached(s, p, out);
   else if (twoPass())
     renderTwoPass(s, p, out);
@@ -237,10 +240,27 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
   out.timings.marchMs = timestamps_.ms(ts, 1, 2);
 }
 
+// The cache is an optimisation: it takes at most an eighth of the device (the lists and the scene
+// need the rest), and where it cannot be had the stage-split passes render the same frame.
 uint32_t Renderer::segmentCacheSlots(const RenderSettings& s) const {
   constexpr uint64_t kMaxSlots = 4;  // most rays of a rank have fewer segments
   const uint64_t slotBytes = uint64_t(s.width) * uint64_t(s.height) * sizeof(gpu::CachedSegment);
-  return uint32_t(std::min(kMaxSlots, s.segmentCacheBytes / std::max<uint64_t>(slotBytes, 1)));
+  const uint64_t budget = std::min(s.segmentCacheBytes, ctx_.deviceMemoryLimit() / 8);
+  return uint32_t(std::min(kMaxSlots, budget / std::max<uint64_t>(slotBytes, 1)));
+}
+
+bool Renderer::ensureSegmentCache(uint64_t bytes) {
+  if (segmentCache_.valid() && segmentCache_.size() >= bytes) return true;
+  if (failedCacheBytes_ != 0 && bytes >= failedCacheBytes_) return false;  // tried: no room
+  segmentCache_ = vk::Buffer();
+  try {
+    segmentCache_ =
+        vk::Buffer(ctx_, bytes, vk::kStorageUsage, vk::MemoryUse::Device, "segment cache");
+    return true;
+  } catch (const vk::DeviceMemoryError&) {
+    failedCacheBytes_ = bytes;
+    return false;
+  }
 }
 
 void Renderer::ensureSegments(gpu::FrameParams& p, uint64_t segments) {
@@ -255,11 +275,6 @@ void Renderer::ensureSegments(gpu::FrameParams& p, uint64_t segments) {
 void Renderer::renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   out.timings.fused = true;
   p.segCacheK = segmentCacheSlots(s);
-  const uint64_t cacheBytes =
-      uint64_t(s.width) * uint64_t(s.height) * p.segCacheK * sizeof(gpu::CachedSegment);
-  if (!segmentCache_.valid() || segmentCache_.size() < cacheBytes)
-    segmentCache_ =
-        vk::Buffer(ctx_, cacheBytes, vk::kStorageUsage, vk::MemoryUse::Device, "segment cache");
   p.segCache = segmentCache_.address();
   CachedTwoPass& pass = cachedPass(passOptions_);
   // Pass 1: trace and march every ray, cache its first segments, count them.

@@ -64,6 +64,8 @@ class Renderer {
   // Segment cache slots per pixel that s.segmentCacheBytes allows (0: stage-split passes).
   uint32_t segmentCacheSlots(const RenderSettings& s) const;
   void ensureSegments(gpu::FrameParams& p, uint64_t segments);
+  // False when the device has no room for a cache of `bytes` (the frame then runs stage-split).
+  bool ensureSegmentCache(uint64_t bytes);
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
   void writeParams(const gpu::FrameParams& p);
 
@@ -87,6 +89,7 @@ class Renderer {
   PreintegrationTable preintegrationTable_;
   vk::Buffer params_, stats_, transferFunction_, segments_, segmentCache_, rays_;
   uint64_t lastSegmentTotal_ = 0;
+  uint64_t failedCacheBytes_ = 0;  // the smallest segment cache the device had no room for
   bool useRays_ = false;
   vk::TimestampQueries timestamps_;
 };

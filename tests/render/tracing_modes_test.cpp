@@ -4,11 +4,14 @@
 // marching). And the traversal's stop at the rank's bounding box must only skip what is empty.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 
 #include "mesh/mesh_builder.h"
+#include "prep/prepare.h"
 #include "render_harness.h"
 #include "test_meshes.h"
+#include "vk/context.h"
 
 namespace sm::render {
 namespace {
@@ -123,6 +126,45 @@ TEST(TracingModes, TraversalEndsAtTheBoundingBoxOnly) {
   for (const auto& p : h.segments) pixelsWithSlabs += p.size() >= 3 ? 1 : 0;
   EXPECT_GT(pixelsWithSlabs, 50u);
   test::expectImagesClose("box_exit_slabs", test::renderReference(m, f, t), h.image);
+}
+
+// The segment cache is an optimisation: where the device has no room for it (here: all but 400 KiB
+// of a 64 MiB budget taken before the first frame, the cache wants 640 KiB) the frame runs
+// stage-split and gives the same image; a budget below one slot per pixel does the same.
+TEST(TracingModes, NoRoomForTheCacheFallsBackToStageSplit) {
+  auto m = layeredSlabs();
+  auto f =
+      ref::test::pointField(m, [](const glm::dvec3& p) { return p.x - 0.5 * p.y + 0.2 * p.z; });
+  RenderSettings s = slabSettings(2.0);
+  s.width = s.height = 64;
+  auto expected = test::renderOnGpu(m, f, s);
+  ASSERT_TRUE(expected.frame.timings.fused);
+  ::setenv("SHELLMARCH_DEVICE_MEMORY_LIMIT", "64M", 1);
+  {
+    vk::Context ctx;
+    mesh::UnstructuredMesh mm = m;
+    auto prepared = prep::prepareRank(mm, prep::makeGlobalFrame(mm.bounds()), {}).rank;
+    GpuScene scene(ctx, prepared);
+    scene.setScalars(prep::gatherScalars(prepared, f));
+    comp::DeepCompositor compositor(ctx, nullptr, s.width, s.height, {});
+    Renderer renderer(ctx, scene, compositor);
+    const uint64_t free = ctx.deviceMemoryLimit() - ctx.deviceMemoryInUse();
+    ASSERT_GT(free, uint64_t(400) << 10);
+    vk::Buffer hog(ctx, free - (uint64_t(400) << 10), vk::kStorageUsage, vk::MemoryUse::Device,
+                   "test: memory taken");
+    FrameResult r = renderer.render(s);
+    EXPECT_FALSE(r.timings.fused);
+    EXPECT_TRUE(sameBits(r.pixels.data(), expected.image.pixels.data(),
+                         r.pixels.size() * sizeof(r.pixels[0])));
+    EXPECT_FALSE(renderer.render(s).timings.fused);  // not tried again at the same size
+    EXPECT_EQ(ctx.validationErrors(), 0u);
+  }
+  ::unsetenv("SHELLMARCH_DEVICE_MEMORY_LIMIT");
+  RenderSettings tiny = s;
+  tiny.segmentCacheBytes = uint64_t(s.width) * s.height * sizeof(gpu::CachedSegment) - 1;
+  auto split = test::renderOnGpu(m, f, tiny);
+  EXPECT_FALSE(split.frame.timings.fused);
+  expectSameFrames("budget_below_one_slot", expected, split, true);
 }
 
 }  // namespace
