@@ -23,6 +23,15 @@ vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
   return p;
 }
 
+// The count and store variants of a two-pass pipeline (constant 20).
+std::pair<std::vector<vk::SpecConstant>, std::vector<vk::SpecConstant>> countAndStore(
+    std::vector<vk::SpecConstant> spec) {
+  auto store = spec;
+  spec.push_back({20, 0u});
+  store.push_back({20, 1u});
+  return {std::move(spec), std::move(store)};
+}
+
 }  // namespace
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
@@ -40,10 +49,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
 
 TraversalPass::TraversalPass(const vk::Context& ctx, const GpuScene& scene,
                              const comp::DeepCompositor& c, PassOptions options) {
-  auto spec = sceneSpecialization(ctx, scene, c, options);
-  auto countSpec = spec, storeSpec = spec;
-  countSpec.push_back({20, 0u});
-  storeSpec.push_back({20, 1u});
+  auto [countSpec, storeSpec] = countAndStore(sceneSpecialization(ctx, scene, c, options));
   count_ = makePipeline(ctx, "traverse (count)", spv::traverse(), countSpec, true, scene);
   store_ = makePipeline(ctx, "traverse (store)", spv::traverse(), storeSpec, true, scene);
 }
@@ -67,10 +73,7 @@ void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h
 
 CachedTwoPass::CachedTwoPass(const vk::Context& ctx, const GpuScene& scene,
                              const comp::DeepCompositor& c, PassOptions options) {
-  auto spec = sceneSpecialization(ctx, scene, c, options);
-  auto countSpec = spec, storeSpec = spec;
-  countSpec.push_back({20, 0u});
-  storeSpec.push_back({20, 1u});
+  auto [countSpec, storeSpec] = countAndStore(sceneSpecialization(ctx, scene, c, options));
   count_ = makePipeline(ctx, "trace and march (count, cache)", spv::render_cached(), countSpec,
                         true, scene);
   store_ =

@@ -206,26 +206,35 @@ FrameResult Renderer::render(const RenderSettings& s) {
   return out;
 }
 
+double Renderer::timedDispatch(const std::function<void(VkCommandBuffer)>& record) {
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, 0);
+    record(cmd);
+    timestamps_.write(cmd, 1);
+  });
+  return timestamps_.ms(timestamps_.results(2), 0, 1);
+}
+
+void Renderer::scanCounts(gpu::FrameParams& p, FrameResult& out) {
+  auto t0 = std::chrono::steady_clock::now();
+  out.segments = compositor_.prepareLists();
+  lastSegmentTotal_ = out.segments;
+  out.timings.scanMs = msSince(t0);
+  ensureSegments(p, out.segments);
+  writeParams(p);
+}
+
 void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   // Pass 1: count each pixel's segments (the compositor's list capacities).
   if (!traversal_)
     traversal_ = std::make_unique<TraversalPass>(ctx_, scene_, compositor_, PassOptions{});
   writeParams(p);
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    timestamps_.reset(cmd);
-    timestamps_.write(cmd, 0);
+  out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
     traversal_->recordCount(cmd, params_.address(), s.width, s.height);
-    timestamps_.write(cmd, 1);
   });
-  auto ts = timestamps_.results(2);
-  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
-  auto t0 = std::chrono::steady_clock::now();
-  out.segments = compositor_.prepareLists();
-  lastSegmentTotal_ = out.segments;
-  out.timings.scanMs = msSince(t0);
+  scanCounts(p, out);
   // Pass 2: store the segments at the scanned offsets, then march them into fragments.
-  ensureSegments(p, out.segments);
-  writeParams(p);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
@@ -235,7 +244,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
     marchPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 2);
   });
-  ts = timestamps_.results(3);
+  auto ts = timestamps_.results(3);
   out.timings.traversalMs += timestamps_.ms(ts, 0, 1);
   out.timings.marchMs = timestamps_.ms(ts, 1, 2);
 }
@@ -279,41 +288,19 @@ void Renderer::renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameR
   CachedTwoPass& pass = cachedPass(passOptions_);
   // Pass 1: trace and march every ray, cache its first segments, count them.
   writeParams(p);
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    timestamps_.reset(cmd);
-    timestamps_.write(cmd, 0);
-    pass.recordCount(cmd, params_.address(), s.width, s.height);
-    timestamps_.write(cmd, 1);
-  });
-  auto ts = timestamps_.results(2);
-  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
-  auto t0 = std::chrono::steady_clock::now();
-  out.segments = compositor_.prepareLists();
-  lastSegmentTotal_ = out.segments;
-  out.timings.scanMs = msSince(t0);
+  out.timings.traversalMs = timedDispatch(
+      [&](VkCommandBuffer cmd) { pass.recordCount(cmd, params_.address(), s.width, s.height); });
+  scanCounts(p, out);
   // Pass 2: copy into the lists at the scanned offsets (tracing again where the cache was short).
-  ensureSegments(p, out.segments);
-  writeParams(p);
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    timestamps_.reset(cmd);
-    timestamps_.write(cmd, 0);
-    pass.recordStore(cmd, params_.address(), s.width, s.height);
-    timestamps_.write(cmd, 1);
-  });
-  ts = timestamps_.results(2);
-  out.timings.marchMs = timestamps_.ms(ts, 0, 1);
+  out.timings.marchMs = timedDispatch(
+      [&](VkCommandBuffer cmd) { pass.recordStore(cmd, params_.address(), s.width, s.height); });
 }
 
 void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   writeParams(p);
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    timestamps_.reset(cmd);
-    timestamps_.write(cmd, 0);
+  out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
     fusedPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
-    timestamps_.write(cmd, 1);
   });
-  auto ts = timestamps_.results(2);
-  out.timings.traversalMs = timestamps_.ms(ts, 0, 1);
   out.timings.fused = true;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -64,6 +65,10 @@ class Renderer {
   // Segment cache slots per pixel that s.segmentCacheBytes allows (0: stage-split passes).
   uint32_t segmentCacheSlots(const RenderSettings& s) const;
   void ensureSegments(gpu::FrameParams& p, uint64_t segments);
+  // One submission of `record` between timestamps: its device milliseconds.
+  double timedDispatch(const std::function<void(VkCommandBuffer)>& record);
+  // After a counting pass: prefix sum (the lists), segment storage, parameters for the next pass.
+  void scanCounts(gpu::FrameParams& p, FrameResult& out);
   // False when the device has no room for a cache of `bytes` (the frame then runs stage-split).
   bool ensureSegmentCache(uint64_t bytes);
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
