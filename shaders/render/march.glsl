@@ -42,8 +42,9 @@ struct FaceCarry {
 #include "transfer.glsl"
 
 void loadVertex(RayFrame fr, SceneRefs sc, uint id, out vec3 P, out float S) {
-  P = projectVertex(fr, vertexPosition(sc, id));
-  S = vertexScalar(sc, id);
+  vec4 r = vertexRecord(sc, id);
+  P = projectVertex(fr, r.xyz);
+  S = r.w;
 }
 
 // Geometry of the pyramid, wedge or hexahedron just entered: what the crossed face carried, the
@@ -52,7 +53,8 @@ void elementGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8], Walk w, Fa
                      out ElementGeom g) {
   SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
     uint id = v[i];
-    g.W[i] = vertexPosition(sc, id);
+    vec4 rec = vertexRecord(sc, id);
+    g.W[i] = rec.xyz;
     uint j = !carried ? 4u : id == w.k[0] ? 0u : id == w.k[1] ? 1u : id == w.k[2] ? 2u
            : (w.kn == 4u && id == w.k[3]) ? 3u : 4u;
     if (j < 4u) {
@@ -60,7 +62,7 @@ void elementGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8], Walk w, Fa
       g.S[i] = j == 0u ? c.S0 : j == 1u ? c.S1 : j == 2u ? c.S2 : c.S3;
     } else {
       g.P[i] = projectVertex(fr, g.W[i]);
-      g.S[i] = vertexScalar(sc, id);
+      g.S[i] = rec.w;
     }
   }
 }

@@ -30,8 +30,17 @@ uint specialisedType(uint t) {
        : kTypesPresent == 8u ? SM_HEX : t;
 }
 
-vec3 vertexPosition(SceneRefs sc, uint v) { return SmVec3s(sc.positions).v[v]; }
-float vertexScalar(SceneRefs sc, uint v) { return SmFloats(sc.scalars).v[v]; }
+vec2 unpackFloats(uint64_t x) { return uintBitsToFloat(unpackUint2x32(x)); }
+
+// Vertex v's rebased position and scalar: one 16-byte record read as two 64-bit words (every
+// per-lane load is a gather on lavapipe: two instead of the four of a float position array and a
+// scalar array; a march step fetches one vertex).
+vec4 vertexRecord(SceneRefs sc, uint v) {
+  SmUint64s r = SmUint64s(sc.vertices);
+  return vec4(unpackFloats(r.v[2u * v]), unpackFloats(r.v[2u * v + 1u]));
+}
+vec3 vertexPosition(SceneRefs sc, uint v) { return vertexRecord(sc, v).xyz; }
+float vertexScalar(SceneRefs sc, uint v) { return unpackFloats(SmUint64s(sc.vertices).v[2u * v + 1u]).y; }
 
 uint recordWords(uint type) { return kCompact ? SM_COMPACT_WORDS[type] : SM_PLAIN_WORDS[type]; }
 

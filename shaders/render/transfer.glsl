@@ -3,7 +3,6 @@
 #ifndef SM_TRANSFER_GLSL
 #define SM_TRANSFER_GLSL
 
-vec2 unpackFloats(uint64_t x) { return uintBitsToFloat(unpackUint2x32(x)); }
 
 // Entries i and min(i + 1, n - 1) of the table, interpolated. Every per-lane load is a gather on
 // lavapipe, and the table's were about half of a sample's cost: the two entries are read as one

@@ -16,8 +16,7 @@ using vec4 = glm::vec4;
 
 // Where one rank's prepared data lives on the device (buffer device addresses).
 struct SceneRefs {
-  uint64_t positions;       // float xyz per vertex, rebased
-  uint64_t scalars;         // float per vertex: the current field and step
+  uint64_t vertices;        // vec4 per vertex: xyz rebased, w the current field and step's scalar
   uint64_t elements[4];     // per type: XOR-compacted or plain records
   uint64_t neighbors[4];    // per type: one element reference per face slot
   uint64_t shellIndices;    // 3 vertex ids per shell triangle
@@ -120,8 +119,8 @@ struct RenderStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SceneRefs) == 14 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 14 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FrameParams layout");
+static_assert(sizeof(SceneRefs) == 13 * 8, "SceneRefs layout");
+static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(CachedSegment) == 40, "CachedSegment layout");

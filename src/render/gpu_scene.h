@@ -65,8 +65,11 @@ class GpuScene {
   uint64_t numVertices_, shellTriangles_;
   glm::dvec3 origin_;
   mesh::Bounds bounds_;
-  vk::Buffer positions_, shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
-  vk::Buffer scalars_[2];  // frames read scalars_[front_]
+  void uploadVertices(vk::Buffer& buffer, std::span<const float> scalars) const;
+
+  std::vector<float> hostPositions_;  // xyz per vertex, to interleave each step's scalars with
+  vk::Buffer shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
+  vk::Buffer vertices_[2];  // xyz + scalar per vertex; frames read vertices_[front_]
   int front_ = 0;
   vk::Buffer elements_[4], neighbors_[4];
   vk::AccelerationStructure blas_, tlas_;
