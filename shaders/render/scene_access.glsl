@@ -14,7 +14,6 @@ layout(constant_id = 0) const bool kCompact = true;
 layout(constant_id = 1) const uint kTypesPresent = 15u;  // bit t: elements of type t exist
 
 layout(buffer_reference, scalar) readonly buffer SmFloats { float v[]; };
-layout(buffer_reference, scalar) readonly buffer SmVec3s { vec3 v[]; };
 layout(buffer_reference, scalar) readonly buffer SmVec4s { vec4 v[]; };
 layout(buffer_reference, scalar) buffer SmUints { uint v[]; };
 layout(buffer_reference, scalar) readonly buffer SmUint64s { uint64_t v[]; };

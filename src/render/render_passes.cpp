@@ -23,15 +23,6 @@ vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
   return p;
 }
 
-// The count and store variants of a two-pass pipeline (constant 20).
-std::pair<std::vector<vk::SpecConstant>, std::vector<vk::SpecConstant>> countAndStore(
-    std::vector<vk::SpecConstant> spec) {
-  auto store = spec;
-  spec.push_back({20, 0u});
-  store.push_back({20, 1u});
-  return {std::move(spec), std::move(store)};
-}
-
 }  // namespace
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
@@ -47,18 +38,25 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
           {101, compositor.encodingConstant()}};
 }
 
-TraversalPass::TraversalPass(const vk::Context& ctx, const GpuScene& scene,
-                             const comp::DeepCompositor& c, PassOptions options) {
-  auto [countSpec, storeSpec] = countAndStore(sceneSpecialization(ctx, scene, c, options));
-  count_ = makePipeline(ctx, "traverse (count)", spv::traverse(), countSpec, true, scene);
-  store_ = makePipeline(ctx, "traverse (store)", spv::traverse(), storeSpec, true, scene);
+CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene,
+                               const comp::DeepCompositor& c, PassOptions options,
+                               CountStoreKind kind) {
+  const bool cached = kind == CountStoreKind::Cached;
+  const auto spirv = cached ? spv::render_cached() : spv::traverse();
+  auto count = sceneSpecialization(ctx, scene, c, options), store = count;
+  count.push_back({20, 0u});
+  store.push_back({20, 1u});
+  count_ = makePipeline(ctx, cached ? "trace and march (count, cache)" : "traverse (count)", spirv,
+                        std::move(count), true, scene);
+  store_ = makePipeline(ctx, cached ? "trace and march (store)" : "traverse (store)", spirv,
+                        std::move(store), true, scene);
 }
 
-void TraversalPass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+void CountStorePass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(count_, cmd, params, w, h);
 }
 
-void TraversalPass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+void CountStorePass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(store_, cmd, params, w, h);
 }
 
@@ -69,23 +67,6 @@ MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::
 
 void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(pipeline_, cmd, params, w, h);
-}
-
-CachedTwoPass::CachedTwoPass(const vk::Context& ctx, const GpuScene& scene,
-                             const comp::DeepCompositor& c, PassOptions options) {
-  auto [countSpec, storeSpec] = countAndStore(sceneSpecialization(ctx, scene, c, options));
-  count_ = makePipeline(ctx, "trace and march (count, cache)", spv::render_cached(), countSpec,
-                        true, scene);
-  store_ =
-      makePipeline(ctx, "trace and march (store)", spv::render_cached(), storeSpec, true, scene);
-}
-
-void CachedTwoPass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(count_, cmd, params, w, h);
-}
-
-void CachedTwoPass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(store_, cmd, params, w, h);
 }
 
 FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,

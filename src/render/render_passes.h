@@ -27,10 +27,17 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
                                                   const comp::DeepCompositor& compositor,
                                                   PassOptions options);
 
-class TraversalPass {
+// A two-pass stage: one shader as a counting and a storing pipeline (constant 20).
+//   Traversal (traverse.comp): the stage-split tracer's traversal, counting then storing segments.
+//   Cached (render_cached.comp): the count pass traces and marches, caching each pixel's first
+//     segments and fragments; the store pass copies them into the lists and traces again only
+//     the pixels with more segments than cache slots.
+enum class CountStoreKind { Traversal, Cached };
+
+class CountStorePass {
  public:
-  TraversalPass(const vk::Context& ctx, const GpuScene& scene,
-                const comp::DeepCompositor& compositor, PassOptions options);
+  CountStorePass(const vk::Context& ctx, const GpuScene& scene,
+                 const comp::DeepCompositor& compositor, PassOptions options, CountStoreKind kind);
   void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
@@ -46,20 +53,6 @@ class MarchPass {
 
  private:
   vk::ComputePipeline pipeline_;
-};
-
-// Two-pass lists with one traversal (shaders/render/render_cached.comp): the count pass traces and
-// marches, caching each pixel's first segments and fragments; the store pass copies them into the
-// lists and traces again only the pixels with more segments than cache slots.
-class CachedTwoPass {
- public:
-  CachedTwoPass(const vk::Context& ctx, const GpuScene& scene,
-                const comp::DeepCompositor& compositor, PassOptions options);
-  void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
-  void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
-
- private:
-  vk::ComputePipeline count_, store_;
 };
 
 class FusedPass {

@@ -38,9 +38,11 @@ MarchPass& Renderer::marchPass(PassOptions options) {
   return *p;
 }
 
-CachedTwoPass& Renderer::cachedPass(PassOptions options) {
+CountStorePass& Renderer::cachedPass(PassOptions options) {
   auto& p = cached_[options.index()];
-  if (!p) p = std::make_unique<CachedTwoPass>(ctx_, scene_, compositor_, options);
+  if (!p)
+    p = std::make_unique<CountStorePass>(ctx_, scene_, compositor_, options,
+                                         CountStoreKind::Cached);
   return *p;
 }
 
@@ -191,7 +193,7 @@ FrameResult Renderer::render(const RenderSettings& s) {
   const uint32_t slots = twoPass() ? segmentCacheSlots(s) : 0;
   if (slots > 0 && ensureSegmentCache(uint64_t(s.width) * uint64_t(s.height) * slots *
                                       sizeof(gpu::CachedSegment)))
-    renderCached(s, p, out);
+    renderCached(s, slots, p, out);
   else if (twoPass())
     renderTwoPass(s, p, out);
   else
@@ -228,7 +230,8 @@ void Renderer::scanCounts(gpu::FrameParams& p, FrameResult& out) {
 void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   // Pass 1: count each pixel's segments (the compositor's list capacities).
   if (!traversal_)
-    traversal_ = std::make_unique<TraversalPass>(ctx_, scene_, compositor_, PassOptions{});
+    traversal_ = std::make_unique<CountStorePass>(ctx_, scene_, compositor_, PassOptions{},
+                                                  CountStoreKind::Traversal);
   writeParams(p);
   out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
     traversal_->recordCount(cmd, params_.address(), s.width, s.height);
@@ -281,11 +284,12 @@ void Renderer::ensureSegments(gpu::FrameParams& p, uint64_t segments) {
   p.fragments = compositor_.lists().fragments;
 }
 
-void Renderer::renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
+void Renderer::renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameParams& p,
+                            FrameResult& out) {
   out.timings.fused = true;
-  p.segCacheK = segmentCacheSlots(s);
+  p.segCacheK = slots;
   p.segCache = segmentCache_.address();
-  CachedTwoPass& pass = cachedPass(passOptions_);
+  CountStorePass& pass = cachedPass(passOptions_);
   // Pass 1: trace and march every ray, cache its first segments, count them.
   writeParams(p);
   out.timings.traversalMs = timedDispatch(

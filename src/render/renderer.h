@@ -61,7 +61,7 @@ class Renderer {
  private:
   gpu::FrameParams frameParams(const RenderSettings& s) const;
   void renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
-  void renderCached(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
+  void renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameParams& p, FrameResult& out);
   // Segment cache slots per pixel that s.segmentCacheBytes allows (0: stage-split passes).
   uint32_t segmentCacheSlots(const RenderSettings& s) const;
   void ensureSegments(gpu::FrameParams& p, uint64_t segments);
@@ -83,9 +83,9 @@ class Renderer {
   void updatePreintegration(const RenderSettings& s);
   bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
 
-  CachedTwoPass& cachedPass(PassOptions options);
-  std::unique_ptr<TraversalPass> traversal_;
-  std::unique_ptr<CachedTwoPass> cached_[PassOptions::kCombinations];
+  CountStorePass& cachedPass(PassOptions options);
+  std::unique_ptr<CountStorePass> traversal_;
+  std::unique_ptr<CountStorePass> cached_[PassOptions::kCombinations];
   std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
   std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
   PassOptions passOptions_;  // of the frame being rendered
