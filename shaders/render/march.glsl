@@ -21,10 +21,9 @@ struct Walk {
   float sIn;
 };
 
-// Geometry of a pyramid, wedge or hexahedron. Tetrahedra keep theirs in plain variables: lavapipe
-// compiles a dynamically indexed local array to per-lane scalar loads and masked stores, while
-// constant indices (and selects) stay in vector registers, so the dominant element type never
-// touches these arrays.
+// Geometry of a pyramid, wedge or hexahedron, indexed by constants only (element_step.glsl: lavapipe
+// compiles a dynamically indexed local array to per-lane scalar loads and masked stores). Tetrahedra
+// keep theirs in plain variables.
 struct ElementGeom {
   vec3 P[8];  // projected vertices (xy in the ray frame, z = foot distance)
   vec3 W[8];  // rebased world positions (for Newton)
@@ -40,6 +39,7 @@ struct FaceCarry {
 };
 
 #include "transfer.glsl"
+#include "element_step.glsl"
 
 void loadVertex(RayFrame fr, SceneRefs sc, uint id, out vec3 P, out float S) {
   vec4 r = vertexRecord(sc, id);
@@ -47,49 +47,6 @@ void loadVertex(RayFrame fr, SceneRefs sc, uint id, out vec3 P, out float S) {
   S = r.w;
 }
 
-// Geometry of the pyramid, wedge or hexahedron just entered: what the crossed face carried, the
-// other vertices fetched.
-void elementGeometry(RayFrame fr, SceneRefs sc, uint type, uint v[8], Walk w, FaceCarry c, bool carried,
-                     out ElementGeom g) {
-  SM_NO_UNROLL for (uint i = 0u; i < SM_NUM_VERTS[type]; ++i) {
-    uint id = v[i];
-    vec4 rec = vertexRecord(sc, id);
-    g.W[i] = rec.xyz;
-    uint j = !carried ? 4u : id == w.k[0] ? 0u : id == w.k[1] ? 1u : id == w.k[2] ? 2u
-           : (w.kn == 4u && id == w.k[3]) ? 3u : 4u;
-    if (j < 4u) {
-      g.P[i] = j == 0u ? c.P0 : j == 1u ? c.P1 : j == 2u ? c.P2 : c.P3;
-      g.S[i] = j == 0u ? c.S0 : j == 1u ? c.S1 : j == 2u ? c.S2 : c.S3;
-    } else {
-      g.P[i] = projectVertex(fr, g.W[i]);
-      g.S[i] = rec.w;
-    }
-  }
-}
-
-// Local vertex indices of the (up to two) triangles of face f, split by the shared rule.
-uint faceTriangles(uint type, uint v[8], uint f, out uint tri[6]) {
-  uint a = smFaceVert(type, f, 0u), b = smFaceVert(type, f, 1u), c = smFaceVert(type, f, 2u);
-  if (smFaceSize(type, f) == 3u) {
-    tri[0] = a; tri[1] = b; tri[2] = c;
-    tri[3] = a; tri[4] = b; tri[5] = c;
-    return 1u;
-  }
-  uint d = smFaceVert(type, f, 3u);
-  uint m = min(min(v[a], v[b]), min(v[c], v[d]));
-  if (m == v[a] || m == v[c]) {
-    tri[0] = a; tri[1] = b; tri[2] = c; tri[3] = c; tri[4] = d; tri[5] = a;
-  } else {
-    tri[0] = b; tri[1] = c; tri[2] = d; tri[3] = d; tri[4] = a; tri[5] = b;
-  }
-  return 2u;
-}
-
-// The face through which the ray leaves the element (side = +1) or, walking backward, came in
-// (side = -1). Crossings are ordered as the perturbed ray meets them, (t, slopes) lexicographically:
-// forward takes the first crossing strictly after the entry (tRef, slopeRef), backward the last
-// strictly before it. Strict progress in that order is what keeps a walk through a vertex or the
-// fold edge of a warped quad from cycling; in convex elements there is just one candidate anyway.
 // Tetrahedron entered through face 3 (decoded tets always are), vertices p0..p3: its other faces
 // share the edges of the entry face, whose signs the entry already fixed, so the exit is decided by
 // the signs of the three edges to the fourth vertex alone (the paper's "at most 2 tests"). These are
@@ -118,61 +75,6 @@ int tetCrossedFace(vec2 p0, vec2 p1, vec2 p2, vec2 p3, int side) {
   return -1;
 }
 
-// The same search for pyramids, wedges and hexahedra, whose faces may be quads split in two.
-bool findCrossing(uint type, uint v[8], ElementGeom g, int skipFace, int side, float tRef, vec2 slopeRef,
-                  out int face, out float t, out vec2 slope, out float s) {
-  // Best candidate ahead of the entry (nearest first), and best one not ahead (least far behind):
-  // a convex element has a single exit, whatever rounding says about its order.
-  bool foundAhead = false, foundOther = false;
-  int faceOther = -1;
-  float tOther = 0.0, sOther = 0.0;
-  vec2 slopeOther = vec2(0.0);
-  face = -1;
-  t = 0.0;
-  slope = vec2(0.0);
-  s = 0.0;
-  SM_NO_UNROLL for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
-    // The side test excludes the triangle the ray came through; skipping the whole entry face is
-    // an optimisation valid for triangles only: a warped quad can fold so that the ray leaves
-    // through the other triangle of the quad it came in by.
-    if (int(f) == skipFace && smFaceSize(type, f) == 3u) continue;
-    uint tri[6];
-    uint nt = faceTriangles(type, v, f, tri);
-    SM_NO_UNROLL for (uint k = 0u; k < nt; ++k) {
-      uint a = tri[3u * k], b = tri[3u * k + 1u], c = tri[3u * k + 2u];
-      if (crossingSide(g.P[a].xy, g.P[b].xy, g.P[c].xy) != side) continue;
-      float tc;
-      vec3 w;
-      vec2 sc;
-      triangleCrossing(v[a], v[b], v[c], g.P[a], g.P[b], g.P[c], tc, w, sc);
-      float value = w.x * g.S[a] + w.y * g.S[b] + w.z * g.S[c];
-      bool ahead = side > 0 ? crossingBefore(tRef, slopeRef, tc, sc) : crossingBefore(tc, sc, tRef, slopeRef);
-      if (ahead) {
-        if (!foundAhead || (side > 0 ? crossingBefore(tc, sc, t, slope) : crossingBefore(t, slope, tc, sc))) {
-          foundAhead = true;
-          face = int(f);
-          t = tc;
-          slope = sc;
-          s = value;
-        }
-      } else if (!foundOther ||
-                 (side > 0 ? crossingBefore(tOther, slopeOther, tc, sc) : crossingBefore(tc, sc, tOther, slopeOther))) {
-        foundOther = true;
-        faceOther = int(f);
-        tOther = tc;
-        slopeOther = sc;
-        sOther = value;
-      }
-    }
-  }
-  if (foundAhead) return true;
-  face = faceOther;
-  t = tOther;
-  slope = slopeOther;
-  s = sOther;
-  return foundOther;
-}
-
 struct MarchResult {
   vec4 color;     // premultiplied, front to back
   float tEnd;     // forward: where the walk left the rank's volume
@@ -190,8 +92,9 @@ const uint MARCH_STEP_LIMIT = 2u;
 // element that holds tLimit (or to the shell face where the volume begins if that comes first);
 // `w` then holds that element entered through that crossing, ready for a forward walk.
 // One function for both directions so that the shader holds one copy of the crossing search,
-// decoding and geometry code (Mesa inlines every call site; compile time grows with size). Each
-// step takes one of two paths, tetrahedra and the rest, which meet again at the exit crossing.
+// decoding and geometry code per type (Mesa inlines every call site; compile time grows with
+// size). Each step takes one of two paths, tetrahedra and the rest, which meet again at the exit
+// crossing.
 MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLimit) {
   MarchResult r;
   r.color = vec4(0.0);
@@ -285,31 +188,16 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
         tetGrad = linearGradient(J, vec3(S1 - S0, S2 - S0, S3 - S0));
       }
     } else {
-      uint v[8];
-      int entry = decodeElement(sc, type, index, w.k, w.kn, v);
-      if (entry < 0) {
+      // One inlined copy per type, so that each has constant tables (element_step.glsl).
+      if (type == SM_HEX)
+        f = stepOf(fr, sc, SM_HEX, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+      else if (type == SM_WED)
+        f = stepOf(fr, sc, SM_WED, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+      else
+        f = stepOf(fr, sc, SM_PYR, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+      if (f < 0) {
         r.status = MARCH_LOST;
         return r;
-      }
-      elementGeometry(fr, sc, type, v, w, c, carried, g);
-      if (!findCrossing(type, v, g, entry, side, w.tIn, w.slopeIn, f, t, slope, s)) {
-        r.status = MARCH_LOST;
-        return r;
-      }
-      ref = neighborOf(sc, type, index, uint(f));
-      n = smFaceSize(type, uint(f));
-      uint l0 = smFaceVert(type, uint(f), 0u), l1 = smFaceVert(type, uint(f), 1u);
-      uint l2 = smFaceVert(type, uint(f), 2u), l3 = smFaceVert(type, uint(f), 3u);
-      e0 = v[l0]; e1 = v[l1]; e2 = v[l2];
-      ce.P0 = g.P[l0]; ce.P1 = g.P[l1]; ce.P2 = g.P[l2];
-      ce.S0 = g.S[l0]; ce.S1 = g.S[l1]; ce.S2 = g.S[l2];
-      if (n == 4u) {
-        e3 = v[l3];
-        ce.P3 = g.P[l3];
-        ce.S3 = g.S[l3];
-      } else {
-        ce.P3 = vec3(0.0);
-        ce.S3 = 0.0;
       }
     }
     if (side > 0) {

@@ -43,31 +43,6 @@ float vertexScalar(SceneRefs sc, uint v) { return unpackFloats(SmUint64s(sc.vert
 
 uint recordWords(uint type) { return kCompact ? SM_COMPACT_WORDS[type] : SM_PLAIN_WORDS[type]; }
 
-void loadRecord(SceneRefs sc, uint type, uint index, out uint rec[8]) {
-  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
-  uint words = recordWords(type);
-  uint64_t base = sc.elements[type];
-  SmUints r = SmUints(base);
-  uint first = index * words;
-  SM_NO_UNROLL for (uint i = 0u; i < words; ++i) rec[i] = r.v[first + i];
-}
-
-// Reconstructs element (type, index) entered through face k[0..n-1] (the element's own outward
-// order). Returns the entry face, or -1 if the face does not belong to the element.
-int decodeElement(SceneRefs sc, uint type, uint index, uint k[4], uint n, out uint v[8]) {
-  uint rec[8];
-  loadRecord(sc, type, index, rec);
-  if (kCompact) return smXorDecode(type, rec, k, n, v);
-  return smPlainDecode(type, rec, k, n, v);
-}
-
-// Connectivity slot of VTK face f of a decoded element (tets: by the opposite vertex's rank).
-const uint kTetOpposite[4] = uint[4](2u, 0u, 1u, 3u);
-uint faceSlot(uint type, uint v[8], uint f) {
-  if (type == SM_TET) return smTetSlot(v, v[kTetOpposite[f]]);
-  return f;
-}
-
 uint neighborOf(SceneRefs sc, uint type, uint index, uint slot) {
   return SmUints(sc.neighbors[type]).v[index * SM_NUM_FACES[type] + slot];
 }

@@ -20,11 +20,15 @@
 
 SM_BEGIN_NAMESPACE
 
+// k[i] for i < 4 by selects, and the position of x among k[0..n-1]: a per-lane index into a
+// local array costs a load and a store per lane on lavapipe, a select one vector instruction.
+SM_FN uint smPick4(SM_IN_ARR(uint, k, 4), uint i) {
+  return i == 0u ? k[0] : i == 1u ? k[1] : i == 2u ? k[2] : k[3];
+}
+
 SM_FN int smFindIdx(SM_IN_ARR(uint, k, 4), uint n, uint x) {
-  SM_NO_UNROLL for (uint i = 0u; i < n; ++i) {
-    if (k[i] == x) return int(i);
-  }
-  return -1;
+  return (n > 0u && k[0] == x) ? 0 : (n > 1u && k[1] == x) ? 1 : (n > 2u && k[2] == x) ? 2
+       : (n > 3u && k[3] == x) ? 3 : -1;
 }
 
 // Connectivity slot of the tet face opposite vertex x: how many of the tet's vertices are smaller.
@@ -77,7 +81,7 @@ SM_FN int smXorDecodePyr(SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4), uint n,
   int it = smFindIdx(k, n, v[4]);
   if (it >= 0) {  // triangle face (v_a, v_b, v4): after the apex come the face's base vertices
     if (n != 3u) return -1;
-    uint x = k[(uint(it) + 1u) % 3u], y = k[(uint(it) + 2u) % 3u];
+    uint x = smPick4(k, (uint(it) + 1u) % 3u), y = smPick4(k, (uint(it) + 2u) % 3u);
     if (x == v[1]) { v[2] = y; v[0] = dx ^ y; return 2; }
     if (y == v[1]) { v[0] = x; v[2] = dx ^ x; return 1; }
     if (x == v[3]) { v[0] = y; v[2] = dx ^ y; return 4; }
@@ -88,7 +92,7 @@ SM_FN int smXorDecodePyr(SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4), uint n,
   // consecutive vertices of the cycle contain one of those two pairs.
   uint m = (n == 4u) ? 4u : 2u;  // successor pairs available (cyclic for 4, a path for 3)
   SM_NO_UNROLL for (uint i = 0u; i < m; ++i) {
-    uint a = k[i], b = k[(i + 1u) % n];
+    uint a = smPick4(k, i), b = smPick4(k, (i + 1u) % n);
     if (a == v[3]) { v[2] = b; v[0] = dx ^ b; return 0; }
     if (a == v[1]) { v[0] = b; v[2] = dx ^ b; return 0; }
   }
@@ -103,12 +107,12 @@ SM_FN int smXorDecodeWed(SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4), uint n,
   int i4 = smFindIdx(k, n, v[4]);
   if (n == 3u) {
     if (i0 >= 0 && i4 < 0) {  // face 0 (v0, v1, v2)
-      v[1] = k[(uint(i0) + 1u) % 3u]; v[2] = k[(uint(i0) + 2u) % 3u];
+      v[1] = smPick4(k, (uint(i0) + 1u) % 3u); v[2] = smPick4(k, (uint(i0) + 2u) % 3u);
       v[3] = dx0 ^ v[2]; v[5] = dx1 ^ v[1];
       return 0;
     }
     if (i4 >= 0 && i0 < 0) {  // face 1 (v3, v5, v4): after v4 come v3, v5
-      v[3] = k[(uint(i4) + 1u) % 3u]; v[5] = k[(uint(i4) + 2u) % 3u];
+      v[3] = smPick4(k, (uint(i4) + 1u) % 3u); v[5] = smPick4(k, (uint(i4) + 2u) % 3u);
       v[2] = dx0 ^ v[3]; v[1] = dx1 ^ v[5];
       return 1;
     }
@@ -116,18 +120,20 @@ SM_FN int smXorDecodeWed(SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4), uint n,
   }
   if (n != 4u) return -1;
   if (i0 >= 0 && i4 >= 0) {  // face 2 (v0, v3, v4, v1)
-    v[3] = k[(uint(i0) + 1u) % 4u]; v[1] = k[(uint(i0) + 3u) % 4u];
-    if (k[(uint(i0) + 2u) % 4u] != v[4]) return -1;
+    v[3] = smPick4(k, (uint(i0) + 1u) % 4u); v[1] = smPick4(k, (uint(i0) + 3u) % 4u);
+    if (smPick4(k, (uint(i0) + 2u) % 4u) != v[4]) return -1;
     v[2] = dx0 ^ v[3]; v[5] = dx1 ^ v[1];
     return 2;
   }
   if (i4 >= 0) {  // face 3 (v1, v4, v5, v2): after v4 come v5, v2, v1
-    v[5] = k[(uint(i4) + 1u) % 4u]; v[2] = k[(uint(i4) + 2u) % 4u]; v[1] = k[(uint(i4) + 3u) % 4u];
+    v[5] = smPick4(k, (uint(i4) + 1u) % 4u); v[2] = smPick4(k, (uint(i4) + 2u) % 4u);
+    v[1] = smPick4(k, (uint(i4) + 3u) % 4u);
     v[3] = dx0 ^ v[2];
     return 3;
   }
   if (i0 >= 0) {  // face 4 (v2, v5, v3, v0): after v0 come v2, v5, v3
-    v[2] = k[(uint(i0) + 1u) % 4u]; v[5] = k[(uint(i0) + 2u) % 4u]; v[3] = k[(uint(i0) + 3u) % 4u];
+    v[2] = smPick4(k, (uint(i0) + 1u) % 4u); v[5] = smPick4(k, (uint(i0) + 2u) % 4u);
+    v[3] = smPick4(k, (uint(i0) + 3u) % 4u);
     v[1] = dx1 ^ v[5];
     return 4;
   }
