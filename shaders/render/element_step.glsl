@@ -4,11 +4,11 @@
 //
 // Why: lavapipe keeps a dynamically indexed local array in memory and reads or writes it one lane
 // at a time, while constant indices stay in vector registers. The table-driven step indexed its
-// vertex and face arrays by loop counters and table entries and cost about 19 times a
-// tetrahedron's step on a hexahedral cube (a 512² frame 2234 ms; 468 ms this way; wedges 1628 ->
-// 400 ms, pyramids 2496 -> 591 ms). The predicates, their operands and their order did not change
-// (smMatchFace's count, the quad split, the triangle order), so walks and images are bit for bit those
-// of the table-driven step.
+// vertex and face arrays by loop counters and table entries and cost about 16 times a
+// tetrahedron's step; unrolled, about 3 times (docs/BENCHMARKS.md: a hexahedral cube renders 5
+// times faster, wedges and pyramids 3.5 times). The predicates, their operands and their order did
+// not change (smMatchFace's count, the quad split, the triangle order), so walks and images are
+// bit for bit those of the table-driven step.
 #ifndef SM_ELEMENT_STEP_GLSL
 #define SM_ELEMENT_STEP_GLSL
 
