@@ -223,15 +223,15 @@ int stepOf(RayFrame fr, SceneRefs sc, uint type, uint index, Walk w, FaceCarry c
   e0 = e1 = e2 = e3 = 0u;
   ce = FaceCarry(vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0);
   uint v[8];
-  int entry = decodeOf(sc, type, index, w.k, w.kn, v);
-  geometryOf(fr, sc, type, v, w, c, carried, g);
-  int f = entry < 0 ? -1 : crossingOf(type, v, g, entry, side, w.tIn, w.slopeIn, t, slope, s);
   ref = SM_NO_NEIGHBOR;
   n = 0u;
-  if (f >= 0) {
-    ref = neighborOf(sc, type, index, uint(f));
-    n = faceOf(type, v, g, f, e0, e1, e2, e3, ce);
-  }
+  int entry = decodeOf(sc, type, index, w.k, w.kn, v);
+  if (entry < 0) return -1;
+  geometryOf(fr, sc, type, v, w, c, carried, g);
+  int f = crossingOf(type, v, g, entry, side, w.tIn, w.slopeIn, t, slope, s);
+  if (f < 0) return -1;
+  ref = neighborOf(sc, type, index, uint(f));
+  n = faceOf(type, v, g, f, e0, e1, e2, e3, ce);
   return f;
 }
 
