@@ -12,8 +12,9 @@
 #ifndef SM_ELEMENT_STEP_GLSL
 #define SM_ELEMENT_STEP_GLSL
 
-// The record of element (type, index), zero past its words; 64-bit reads where the records keep
-// 8-byte alignment (hexahedra, and compacted pyramids and wedges: half the gathers).
+// The record of element (type, index), zero past its words; read as 64-bit words where records
+// have an even number of words and so keep 8-byte alignment (all but plain pyramids): half the
+// gathers.
 void loadRecordOf(SceneRefs sc, uint type, uint index, out uint rec[8]) {
   uint words = recordWords(type);
   [[unroll]] for (uint i = 0u; i < 8u; ++i) rec[i] = 0u;
@@ -137,6 +138,8 @@ int crossingOf(uint type, uint v[8], ElementGeom g, int skipFace, int side, floa
       if (!decided || crosses) maybe |= 1u << (2u * f + k);
     }
   }
+  // Best candidate ahead of the entry (nearest first), and best one not ahead (least far behind):
+  // a convex element has a single exit, whatever rounding says about its order.
   bool foundAhead = false, foundOther = false;
   int face = -1, faceOther = -1;
   float tOther = 0.0, sOther = 0.0;
