@@ -33,29 +33,12 @@ void loadRecordOf(SceneRefs sc, uint type, uint index, out uint rec[8]) {
   }
 }
 
-// smMatchFace, unrolled: the first face of which exactly n vertices are among k[0..n-1].
-int matchFaceOf(uint type, uint v[8], uint k[4], uint n) {
-  int face = -1;
-  [[unroll]] for (uint f = 0u; f < SM_MAX_FACES; ++f) {
-    if (f >= SM_NUM_FACES[type]) continue;
-    uint fs = smFaceSize(type, f);
-    uint found = 0u;
-    [[unroll]] for (uint j = 0u; j < 4u; ++j)
-      if (j < fs && smFindIdx(k, n, v[smFaceVert(type, f, j)]) >= 0) found += 1u;
-    if (face < 0 && fs >= n && found == n) face = int(f);
-  }
-  return face;
-}
-
 // Reconstructs element (type, index) entered through face k[0..n-1] (its own outward order);
 // returns the entry face, or -1 if the face does not belong to the element.
 int decodeOf(SceneRefs sc, uint type, uint index, uint k[4], uint n, out uint v[8]) {
   uint rec[8];
   loadRecordOf(sc, type, index, rec);
-  if (kCompact && type == SM_PYR) return smXorDecodePyr(rec, k, n, v);
-  if (kCompact && type == SM_WED) return smXorDecodeWed(rec, k, n, v);
-  [[unroll]] for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
-  return matchFaceOf(type, v, k, n);
+  return kCompact ? smXorDecode(type, rec, k, n, v) : smPlainDecode(type, rec, k, n, v);
 }
 
 // Geometry of the element just entered: what the crossed face carried, the other vertices fetched

@@ -17,6 +17,7 @@
 #define SM_OUT(T, name) T& name
 #define SM_U(x) x##u
 #define SM_NO_UNROLL
+#define SM_UNROLL
 #else
 #define SM_BEGIN_NAMESPACE
 #define SM_END_NAMESPACE
@@ -27,10 +28,13 @@
 #define SM_INOUT(T, name) inout T name
 #define SM_OUT(T, name) out T name
 #define SM_U(x) x##u
-// Loops over faces and vertices stay loops: unrolled for every element type they multiply code
-// size, and with it Mesa's shader compile time (seconds per pipeline on lavapipe).
+// Loops over faces and vertices stay loops (SM_NO_UNROLL) where they run for a type known only per
+// lane: unrolled for every element type they multiply code size, and with it Mesa's shader compile
+// time (seconds per pipeline on lavapipe). SM_UNROLL marks loops that run for a literal type
+// (shaders/render/element_step.glsl), where unrolling turns every array index into a constant.
 #extension GL_EXT_control_flow_attributes : require
 #define SM_NO_UNROLL [[dont_unroll]]
+#define SM_UNROLL [[unroll]]
 #endif
 
 #ifdef __cplusplus

@@ -54,18 +54,20 @@ SM_FN void smXorEncode(uint type, SM_IN_ARR(uint, v, 8), SM_OUT_ARR(uint, rec, 8
 }
 
 // Face of `type` that holds all n known vertices (n = 3 may be three vertices of a quad); -1 if
-// none. Two faces of a valid element share at most an edge, so the answer is unique.
+// none. Two faces of a valid element share at most an edge, so the answer is unique. Unrolled over
+// the largest type with guards, so that for a literal type every index is a constant.
 SM_FN int smMatchFace(uint type, SM_IN_ARR(uint, v, 8), SM_IN_ARR(uint, k, 4), uint n) {
-  SM_NO_UNROLL for (uint f = 0u; f < SM_NUM_FACES[type]; ++f) {
+  int face = -1;
+  SM_UNROLL for (uint f = 0u; f < SM_MAX_FACES; ++f) {
+    if (f >= SM_NUM_FACES[type]) continue;
     uint fs = smFaceSize(type, f);
-    if (fs < n) continue;
     uint found = 0u;
-    SM_NO_UNROLL for (uint j = 0u; j < fs; ++j) {
-      if (smFindIdx(k, n, v[smFaceVert(type, f, j)]) >= 0) found += 1u;
+    SM_UNROLL for (uint j = 0u; j < 4u; ++j) {
+      if (j < fs && smFindIdx(k, n, v[smFaceVert(type, f, j)]) >= 0) found += 1u;
     }
-    if (found == n) return int(f);
+    if (face < 0 && fs >= n && found == n) face = int(f);
   }
-  return -1;
+  return face;
 }
 
 SM_FN int smDecodeTet(uint fourth, SM_IN_ARR(uint, k, 4), SM_OUT_ARR(uint, v, 8)) {
@@ -149,7 +151,7 @@ SM_FN int smXorDecode(uint type, SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4),
   }
   if (type == SM_PYR) return smXorDecodePyr(rec, k, n, v);
   if (type == SM_WED) return smXorDecodeWed(rec, k, n, v);
-  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
+  SM_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
   return smMatchFace(type, v, k, n);
 }
 
@@ -165,7 +167,7 @@ SM_FN int smPlainDecode(uint type, SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4
     if (missing != 1u) return -1;
     return smDecodeTet(fourth, k, v);
   }
-  SM_NO_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
+  SM_UNROLL for (uint i = 0u; i < 8u; ++i) v[i] = rec[i];
   return smMatchFace(type, v, k, n);
 }
 
