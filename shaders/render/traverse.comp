@@ -9,11 +9,14 @@
 #include "segment.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(constant_id = 20) const bool kStore = false;
-layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
+layout(push_constant, scalar) uniform Push {
+  uint64_t params;
+  uint store;  // 0: count pass, 1: store pass (one pipeline for both: render_cached.comp says why)
+} pc;
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
+  bool kStore = pc.store != 0u;
   uvec2 px = tiledPixel();
   if (px.x >= fp.width || px.y >= fp.height) return;
   uint pixel = px.y * fp.width + px.x;

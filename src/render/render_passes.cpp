@@ -7,11 +7,13 @@ namespace {
 
 struct Push {
   uint64_t params;
+  uint32_t store = 0;  // count/store passes: which of the two (render_cached.comp)
 };
 
 void dispatchPixels(const vk::ComputePipeline& p, VkCommandBuffer cmd, VkDeviceAddress params,
-                    int w, int h) {
-  p.dispatch(cmd, vk::groupsFor(uint64_t(w), 8), vk::groupsFor(uint64_t(h), 8), 1, Push{params});
+                    int w, int h, uint32_t store = 0) {
+  p.dispatch(cmd, vk::groupsFor(uint64_t(w), 8), vk::groupsFor(uint64_t(h), 8), 1,
+             Push{params, store});
 }
 
 vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
@@ -43,21 +45,16 @@ CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene,
                                CountStoreKind kind) {
   const bool cached = kind == CountStoreKind::Cached;
   const auto spirv = cached ? spv::render_cached() : spv::traverse();
-  auto count = sceneSpecialization(ctx, scene, c, options), store = count;
-  count.push_back({20, 0u});
-  store.push_back({20, 1u});
-  count_ = makePipeline(ctx, cached ? "trace and march (count, cache)" : "traverse (count)", spirv,
-                        std::move(count), true, scene);
-  store_ = makePipeline(ctx, cached ? "trace and march (store)" : "traverse (store)", spirv,
-                        std::move(store), true, scene);
+  pipeline_ = makePipeline(ctx, cached ? "trace and march (count, store)" : "traverse (count, store)",
+                           spirv, sceneSpecialization(ctx, scene, c, options), true, scene);
 }
 
 void CountStorePass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(count_, cmd, params, w, h);
+  dispatchPixels(pipeline_, cmd, params, w, h, 0);
 }
 
 void CountStorePass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(store_, cmd, params, w, h);
+  dispatchPixels(pipeline_, cmd, params, w, h, 1);
 }
 
 MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,

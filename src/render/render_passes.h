@@ -27,7 +27,9 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
                                                   const comp::DeepCompositor& compositor,
                                                   PassOptions options);
 
-// A two-pass stage: one shader as a counting and a storing pipeline (constant 20).
+// A two-pass stage: one pipeline that counts or stores (a push constant picks the pass; one
+// pipeline, not two specialisations, because compiling the tracer is most of a renderer's first
+// frame on lavapipe).
 //   Traversal (traverse.comp): the stage-split tracer's traversal, counting then storing segments.
 //   Cached (render_cached.comp): the count pass traces and marches, caching each pixel's first
 //     segments and fragments; the store pass copies them into the lists and traces again only
@@ -42,7 +44,7 @@ class CountStorePass {
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
-  vk::ComputePipeline count_, store_;
+  vk::ComputePipeline pipeline_;
 };
 
 class MarchPass {
