@@ -45,8 +45,9 @@ CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene,
                                CountStoreKind kind) {
   const bool cached = kind == CountStoreKind::Cached;
   const auto spirv = cached ? spv::render_cached() : spv::traverse();
-  pipeline_ = makePipeline(ctx, cached ? "trace and march (count, store)" : "traverse (count, store)",
-                           spirv, sceneSpecialization(ctx, scene, c, options), true, scene);
+  pipeline_ =
+      makePipeline(ctx, cached ? "trace and march (count, store)" : "traverse (count, store)",
+                   spirv, sceneSpecialization(ctx, scene, c, options), true, scene);
 }
 
 void CountStorePass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
