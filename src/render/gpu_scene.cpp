@@ -144,6 +144,9 @@ gpu::SceneRefs GpuScene::refs() const {
   for (int t = 0; t < 4; ++t) {
     s.elements[t] = elements_[t].address();
     s.neighbors[t] = neighbors_[t].address();
+    // The shaders read records and a tetrahedron's neighbours as 64-bit words (each buffer has
+    // its own allocation, which any implementation aligns for every resource it supports).
+    SM_CHECK(s.elements[t] % 8 == 0 && s.neighbors[t] % 8 == 0);
   }
   s.shellIndices = shellIndices_.address();
   s.shellRefs = shellRefs_.address();
