@@ -21,6 +21,18 @@ float boxExit(RayFrame fr, FrameParams fp) {
   return t;
 }
 
+// Where the ray enters this rank's bounding box (0 when it starts inside, or without bounds).
+float boxEntry(RayFrame fr, FrameParams fp) {
+  if (fp.boundsValid == 0u) return 0.0;
+  float t = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (fr.dir[i] == 0.0) continue;
+    float near = ((fr.dir[i] > 0.0 ? fp.boundsLo[i] : fp.boundsHi[i]) - fr.org[i]) / fr.dir[i];
+    t = max(t, near);
+  }
+  return t;
+}
+
 // True once a walk that ended at tEnd has left the box: the exact walk and the float box test
 // round differently, so within a few ulps of the box counts as on it (what could lie between is
 // a sliver far thinner than any sample spacing).
@@ -37,12 +49,16 @@ const uint RAY_TO_CACHE = 1u;
 // the fragments a list would keep (non-zero opacity).
 uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool storeSegments,
               uint segBase, inout DcListWriter wr, inout uint fragments, inout SegmentStats st) {
-  float tBox = boxExit(fr, fp);
+  float tBox = boxExit(fr, fp), tBoxIn = boxEntry(fr, fp);
+  // The next entry is most often where the ray enters the box (a far field fills its box) or
+  // where the last segment ended (clusters side by side): probe there first (nextCrossing), a
+  // thousandth of the box's depth on, far more than float rounding of either.
+  float probeDepth = tBox < 3.0e38 && tBox > tBoxIn ? 1e-3 * (tBox - tBoxIn) : 0.0;
   float prevEnd = 0.0, transmittance = 1.0;
   Traversal tr = beginTraversal(fp);
   Segment seg;
   uint n = 0u;
-  while (n < cap && nextSegment(fr, fp.scene, tr, seg)) {
+  while (n < cap && nextSegment(fr, fp.scene, tr, probeDepth > 0.0 ? max(tBoxIn, prevEnd) + probeDepth : 0.0, seg)) {
     DcFragment frag;
     bool has = integrateSegment(fr, fp, seg, prevEnd, frag, st);
     if (storeSegments) SmSegments(fp.segments).v[segBase + n] = seg;

@@ -72,10 +72,24 @@ bool deviceCrossing(RayFrame fr, float tPrev, float tMax, int side, out uint tri
   return true;
 }
 
-bool nextCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, int side, out uint tri, out float t) {
+// The first crossing after tPrev. With a probe (tPrev < probe < 3e38), the search first stops at
+// `probe`: the device then visits only the nodes near where the crossing is expected, instead of
+// whatever its traversal order reaches before the first hit prunes the rest. A crossing found
+// within the probe is the one the whole ray would give (every triangle crossed before the probe
+// is a candidate of both searches, and the first is chosen by the same rule); otherwise the
+// search runs again over the whole ray. One query call site either way (a loop, not two calls:
+// Mesa inlines each call, and each copy of the query costs compile time).
+bool nextCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, int side, float probe, out uint tri,
+                  out float t) {
   const float tMax = 3.0e38;
-  if (kExactShell) return exactCrossing(fr, sc, tPrev, triPrev, tMax, side, tri, t);
-  return deviceCrossing(fr, tPrev, tMax, side, tri, t);
+  bool probing = probe > max(tPrev, 0.0) && probe < tMax;
+  for (uint attempt = probing ? 0u : 1u; attempt < 2u; ++attempt) {
+    float limit = attempt == 0u ? probe : tMax;
+    bool found = kExactShell ? exactCrossing(fr, sc, tPrev, triPrev, limit, side, tri, t)
+                             : deviceCrossing(fr, tPrev, limit, side, tri, t);
+    if (found) return true;
+  }
+  return false;
 }
 
 // Traversal as a state machine with one query call site (Mesa inlines each call; fewer copies of
@@ -107,14 +121,15 @@ Traversal beginTraversal(FrameParams fp) {
   return tr;
 }
 
-// The next segment along the ray; false when there is none.
-bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, out Segment seg) {
+// The next segment along the ray; false when there is none. `probe`: where the next crossing is
+// expected (nextCrossing), or 0 for none.
+bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, float probe, out Segment seg) {
   seg = firstSearchPoint();
   for (uint guard = 0u; guard < 4u; ++guard) {
     bool entries = tr.phase != 0u;
     uint tri;
     float t;
-    bool found = nextCrossing(fr, sc, tr.prev.tEntry, tr.prev.entryTriangle, entries ? -1 : 1, tri, t);
+    bool found = nextCrossing(fr, sc, tr.prev.tEntry, tr.prev.entryTriangle, entries ? -1 : 1, probe, tri, t);
     if (tr.phase == 0u) {
       if (!found) return false;  // no exit ahead at all: nothing of this rank on the ray
       tr.tFirstExit = t;
@@ -124,7 +139,13 @@ bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, out Segment seg)
     }
     if (tr.phase == 1u) {
       tr.phase = 2u;
-      if (!found || t > tr.tFirstExit) {  // the eye is inside: a segment starts at it
+      // The eye is inside unless an entry comes before the first exit. An entry at the first
+      // exit's distance is a neighbouring volume whose face touches this one's (unwelded pieces):
+      // computed on other triangles of the same plane, its distance differs from the exit's by
+      // rounding, either way, so "before" means by more than that. (An eye outside a volume
+      // thinner than that is taken as inside: the walk back from the exit then stops at the
+      // volume's entry face, and the segment starts there, as it should.)
+      if (!found || t > tr.tFirstExit - 4.0e-6 * abs(tr.tFirstExit)) {  // a segment starts at the eye
         seg.exitTriangle = tr.firstExit;
         return true;
       }

@@ -26,7 +26,7 @@ void main() {
   uint n = 0u;
   Traversal tr = beginTraversal(fp);
   Segment seg;
-  while (n < cap && nextSegment(fr, fp.scene, tr, seg)) {
+  while (n < cap && nextSegment(fr, fp.scene, tr, 0.0, seg)) {
     if (kStore) SmSegments(fp.segments).v[base + n] = seg;
     n += 1u;
   }
