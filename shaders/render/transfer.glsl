@@ -4,6 +4,20 @@
 #define SM_TRANSFER_GLSL
 
 
+// floor(x) as an integer, for 0 <= x < 2^23 (table coordinates): added to 2^23, a float's mantissa
+// holds it. Not uint(x): lavapipe converts a float to an integer one lane at a time (LLVM's
+// saturating conversion, scalarised), eight conversions and compares per sample; this is a
+// vector floor, add and subtract. NaN gives some large value, which the callers' min() bounds.
+uint floorIndex(float x) {
+  precise float f = floor(x) + 8388608.0;
+  return floatBitsToUint(f) - 0x4B000000u;
+}
+
+uvec3 floorIndex(vec3 x) {
+  precise vec3 f = floor(x) + vec3(8388608.0);
+  return floatBitsToUint(f) - uvec3(0x4B000000u);
+}
+
 // Entries i and min(i + 1, n - 1) of the table, interpolated. Every per-lane load is a gather on
 // lavapipe, and the table's were about half of a sample's cost: the two entries are read as one
 // 32-byte span of four 64-bit words (half the gathers of eight floats; the buffer is 16-byte
@@ -11,8 +25,7 @@
 // table.
 vec4 transferLookup(FrameParams fp, float s) {
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
-  // x >= 0, so int(x) is uint(x); lavapipe converts float to uint one lane at a time.
-  uint i = min(uint(int(x)), fp.tfEntries - 1u);
+  uint i = min(floorIndex(x), fp.tfEntries - 1u);
   uint w = 2u * min(i, fp.tfEntries - 2u);
   SmUint64s tf = SmUint64s(fp.transferFunction);
   vec4 hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
@@ -60,7 +73,7 @@ float piCoord(FrameParams fp, float s, uint bins) {
 float piCumulativeAt(FrameParams fp, float s) {
   SmFloats c = SmFloats(fp.piCumulative);
   float x = piCoord(fp, s, fp.piCumulativeBins);
-  uint i = min(uint(x), fp.piCumulativeBins - 2u);
+  uint i = min(floorIndex(x), fp.piCumulativeBins - 2u);
   return mix(c.v[i], c.v[i + 1u], x - float(i));
 }
 
@@ -68,7 +81,7 @@ vec3 piColor(FrameParams fp, float sf, float sb, float L) {
   vec3 x = vec3(piCoord(fp, sf, fp.piScalarBins), piCoord(fp, sb, fp.piScalarBins),
                 sqrt(clamp(L * fp.piSigmaMax / fp.piTauMax, 0.0, 1.0)) * float(fp.piLengthBins - 1u));
   uvec3 size = uvec3(fp.piScalarBins, fp.piScalarBins, fp.piLengthBins);
-  uvec3 lo = min(uvec3(x), size - 1u);
+  uvec3 lo = min(floorIndex(x), size - 1u);
   uvec3 hi = min(lo + 1u, size - 1u);
   vec3 w = x - vec3(lo);
   SmVec4s table = SmVec4s(fp.preintegration);
