@@ -107,6 +107,7 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
   FaceCarry c = FaceCarry(vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0);
   bool carried = false;  // nothing to carry into the first element
   uint kNext = kNoSample;
+  TfCache tfc = emptyTfCache();
   SM_NO_UNROLL for (uint step = 0u; step < fp.maxElementSteps; ++step) {
     r.steps += 1u;
     uint type = specialisedType(smRefType(w.next)), index = smRefIndex(w.next);
@@ -210,7 +211,7 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
       t = max(t, w.tIn);
       float a = max(w.tIn, tLimit);
       vec3 guess = parametricCenter(type);  // Newton starts at each element's centre
-      if (t > a) integrateElement(fr, fp, type, g, tetGrad, w.tIn, t, w.sIn, s, a, t, guess, r.color, r.samples, kNext);
+      if (t > a) integrateElement(fr, fp, type, g, tetGrad, w.tIn, t, w.sIn, s, a, t, guess, r.color, r.samples, kNext, tfc);
       r.tEnd = t;
       if (r.color.a >= fp.earlyTermination || ref == SM_NO_NEIGHBOR) {
         r.status = MARCH_OK;

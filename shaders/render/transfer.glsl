@@ -23,14 +23,36 @@ uvec3 floorIndex(vec3 x) {
 // 32-byte span of four 64-bit words (half the gathers of eight floats; the buffer is 16-byte
 // aligned), from entry min(i, n - 2) (the renderer insists on n >= 2) so that the span stays in the
 // table.
-vec4 transferLookup(FrameParams fp, float s) {
+//
+// Consecutive samples along a ray mostly fall between the same two entries (a table of 256 entries
+// over the field's range, samples a fraction of an element apart), so a walk keeps the last two
+// entries it read and reads again only when the interval changes: a SIMD batch skips the gathers
+// when none of its rays needs them. The values used are the same either way.
+struct TfCache {
+  uint i;  // interval of lo and hi; kNoInterval: none yet
+  vec4 lo, hi;
+};
+
+const uint kNoInterval = 0xFFFFFFFFu;
+
+TfCache emptyTfCache() { return TfCache(kNoInterval, vec4(0.0), vec4(0.0)); }
+
+vec4 transferLookupCached(FrameParams fp, float s, inout TfCache cache) {
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
   uint i = min(floorIndex(x), fp.tfEntries - 1u);
-  uint w = 2u * min(i, fp.tfEntries - 2u);
-  SmUint64s tf = SmUint64s(fp.transferFunction);
-  vec4 hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
-  vec4 lo = i == fp.tfEntries - 1u ? hi : vec4(unpackFloats(tf.v[w]), unpackFloats(tf.v[w + 1u]));
-  return mix(lo, hi, x - float(i));
+  if (i != cache.i) {
+    uint w = 2u * min(i, fp.tfEntries - 2u);
+    SmUint64s tf = SmUint64s(fp.transferFunction);
+    cache.hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
+    cache.lo = i == fp.tfEntries - 1u ? cache.hi : vec4(unpackFloats(tf.v[w]), unpackFloats(tf.v[w + 1u]));
+    cache.i = i;
+  }
+  return mix(cache.lo, cache.hi, x - float(i));
+}
+
+vec4 transferLookup(FrameParams fp, float s) {
+  TfCache none = emptyTfCache();
+  return transferLookupCached(fp, s, none);
 }
 
 // t of grid sample k, computed the same way everywhere (so every rank agrees on boundaries).
@@ -184,7 +206,7 @@ const uint kNoSample = 0xFFFFFFFFu;
 
 void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec3 tetGrad, float tIn,
                       float tOut, float sIn, float sOut, float a, float b, inout vec3 guess, inout vec4 acc,
-                      inout uint samples, inout uint kNext) {
+                      inout uint samples, inout uint kNext, inout TfCache tfc) {
   float dt = fp.dt;
   // Newton works relative to the element's first vertex: small numbers, better conditioned. Zero
   // past the element's vertices (see interpolate.glsl).
@@ -223,7 +245,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
     float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
     vec4 c = vec4(0.0);
     if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
-      c = transferLookup(fp, s);
+      c = transferLookupCached(fp, s, tfc);
       if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
     }
     float alpha = 1.0 - exp(-c.a * fp.sigmaScale * dt);
