@@ -58,7 +58,9 @@ uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool
   Traversal tr = beginTraversal(fp);
   Segment seg;
   uint n = 0u;
-  while (n < cap && nextSegment(fr, fp.scene, tr, probeDepth > 0.0 ? max(tBoxIn, prevEnd) + probeDepth : 0.0, seg)) {
+  while (n < cap) {
+    float probe = probeDepth > 0.0 ? max(tBoxIn, prevEnd) + probeDepth : 0.0;
+    if (!nextSegment(fr, fp.scene, tr, probe, seg)) break;
     DcFragment frag;
     bool has = integrateSegment(fr, fp, seg, prevEnd, frag, st);
     if (storeSegments) SmSegments(fp.segments).v[segBase + n] = seg;

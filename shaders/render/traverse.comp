@@ -16,19 +16,19 @@ layout(push_constant, scalar) uniform Push {
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  bool kStore = pc.store != 0u;
+  bool store = pc.store != 0u;
   uvec2 px = tiledPixel();
   if (px.x >= fp.width || px.y >= fp.height) return;
   uint pixel = px.y * fp.width + px.x;
   RayFrame fr = pixelRay(fp, px);
-  uint base = kStore ? SmUints(fp.segOffsets).v[pixel] : 0u;
-  uint cap = kStore ? SmUints(fp.segCounts).v[pixel] : fp.maxSegments;
+  uint base = store ? SmUints(fp.segOffsets).v[pixel] : 0u;
+  uint cap = store ? SmUints(fp.segCounts).v[pixel] : fp.maxSegments;
   uint n = 0u;
   Traversal tr = beginTraversal(fp);
   Segment seg;
   while (n < cap && nextSegment(fr, fp.scene, tr, 0.0, seg)) {
-    if (kStore) SmSegments(fp.segments).v[base + n] = seg;
+    if (store) SmSegments(fp.segments).v[base + n] = seg;
     n += 1u;
   }
-  if (!kStore) SmUints(fp.segCounts).v[pixel] = n;
+  if (!store) SmUints(fp.segCounts).v[pixel] = n;
 }
