@@ -9,28 +9,18 @@
 #include "shell_query.glsl"
 #include "segment.glsl"
 
-// Where the ray leaves this rank's bounding box.
-float boxExit(RayFrame fr, FrameParams fp) {
-  if (fp.boundsValid == 0u) return 3.0e38;
-  float t = 3.0e38;
-  for (int i = 0; i < 3; ++i) {
-    if (fr.dir[i] == 0.0) continue;  // parallel to these faces: they bound nothing
-    float far = ((fr.dir[i] > 0.0 ? fp.boundsHi[i] : fp.boundsLo[i]) - fr.org[i]) / fr.dir[i];
-    t = min(t, far);
-  }
-  return t;
-}
-
-// Where the ray enters this rank's bounding box (0 when it starts inside, or without bounds).
-float boxEntry(RayFrame fr, FrameParams fp) {
-  if (fp.boundsValid == 0u) return 0.0;
-  float t = 0.0;
+// Where the ray enters (x, 0 when it starts inside) and leaves (y) this rank's bounding box;
+// (0, 3e38) without bounds. Slabs parallel to the ray bound nothing.
+vec2 boxSpan(RayFrame fr, FrameParams fp) {
+  vec2 span = vec2(0.0, 3.0e38);
+  if (fp.boundsValid == 0u) return span;
   for (int i = 0; i < 3; ++i) {
     if (fr.dir[i] == 0.0) continue;
-    float near = ((fr.dir[i] > 0.0 ? fp.boundsLo[i] : fp.boundsHi[i]) - fr.org[i]) / fr.dir[i];
-    t = max(t, near);
+    float lo = (fp.boundsLo[i] - fr.org[i]) / fr.dir[i], hi = (fp.boundsHi[i] - fr.org[i]) / fr.dir[i];
+    span.x = max(span.x, min(lo, hi));
+    span.y = min(span.y, max(lo, hi));
   }
-  return t;
+  return span;
 }
 
 // True once a walk that ended at tEnd has left the box: the exact walk and the float box test
@@ -49,7 +39,8 @@ const uint RAY_TO_CACHE = 1u;
 // the fragments a list would keep (non-zero opacity).
 uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool storeSegments,
               uint segBase, inout DcListWriter wr, inout uint fragments, inout SegmentStats st) {
-  float tBox = boxExit(fr, fp), tBoxIn = boxEntry(fr, fp);
+  vec2 box = boxSpan(fr, fp);
+  float tBoxIn = box.x, tBox = box.y;
   // The next entry is most often where the ray enters the box (a far field fills its box) or
   // where the last segment ended (clusters side by side): probe there first (nextCrossing), a
   // thousandth of the box's depth on, far more than float rounding of either.
