@@ -27,7 +27,7 @@ vec2 boxSpan(RayFrame fr, FrameParams fp) {
 // round differently, so within a few ulps of the box counts as on it (what could lie between is
 // a sliver far thinner than any sample spacing).
 bool pastBox(float tEnd, float tBox) {
-  return tEnd >= tBox - 4.0e-6 * abs(tBox);
+  return tEnd >= tBox - kSamePlace * abs(tBox);
 }
 
 // Where the segments go: into the pixel's fragment list (fixed-length lists; overflow pixels of

@@ -23,6 +23,11 @@
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT tlas;
 
+// Two distances along a ray to the same place, computed on different triangles or by different
+// formulas (the exact walk and the float box test), differ by rounding; within this (relative)
+// they count as the same place. Far thinner than any sample spacing.
+const float kSamePlace = 4.0e-6;
+
 // Exact mode: the first crossing with the wanted side (-1 entry, +1 exit) after (tPrev, triPrev) in
 // (t, triangle) order, so that crossings at equal t (coincident shells) are each found once.
 bool exactCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, float tMax, int side, out uint tri,
@@ -145,7 +150,7 @@ bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, float probe, out
       // rounding, either way, so "before" means by more than that. (An eye outside a volume
       // thinner than that is taken as inside: the walk back from the exit then stops at the
       // volume's entry face, and the segment starts there, as it should.)
-      if (!found || t > tr.tFirstExit - 4.0e-6 * abs(tr.tFirstExit)) {  // a segment starts at the eye
+      if (!found || t > tr.tFirstExit - kSamePlace * abs(tr.tFirstExit)) {  // a segment starts at the eye
         seg.exitTriangle = tr.firstExit;
         return true;
       }
