@@ -87,16 +87,31 @@ vec3 shade(FrameParams fp, vec3 rgb, float alpha, float c) {
 layout(constant_id = 12) const bool kElementExact = false;
 
 // Element-exact integration with the pre-integrated transfer function; mirrors
-// PreintegrationTable::integrate (src/render/preintegration.cpp) step by step.
+// PreintegrationTable::integrate (src/render/preintegration.cpp) step by step, on the device layout
+// of PreintegrationTable::deviceWords (one 64-bit gather per colour corner and per cumulative
+// lookup).
 float piCoord(FrameParams fp, float s, uint bins) {
   return clamp((s - fp.piLo) / (fp.piHi - fp.piLo), 0.0, 1.0) * float(bins - 1u);
 }
 
 float piCumulativeAt(FrameParams fp, float s) {
-  SmFloats c = SmFloats(fp.piCumulative);
   float x = piCoord(fp, s, fp.piCumulativeBins);
   uint i = min(floorIndex(x), fp.piCumulativeBins - 2u);
-  return mix(c.v[i], c.v[i + 1u], x - float(i));
+  vec2 pair = unpackFloats(SmUint64s(fp.piCumulative).v[i]);
+  return mix(pair.x, pair.y, x - float(i));
+}
+
+// float(code) for a code below 2^23, by the mantissa trick of floorIndex (vector operations).
+vec3 codeToFloat(uvec3 code) {
+  return uintBitsToFloat(code | uvec3(0x4B000000u)) - vec3(8388608.0);
+}
+
+// PreintegrationTable::decodeColor: three 21-bit channels, times 2^-21 (exact).
+vec3 piColorEntry(SmUint64s table, uint i) {
+  uint64_t w = table.v[i];
+  const uint64_t mask = 0x1FFFFFul;
+  uvec3 code = uvec3(uint(w & mask), uint((w >> 21) & mask), uint(w >> 42));
+  return codeToFloat(code) * (1.0 / 2097152.0);
 }
 
 vec3 piColor(FrameParams fp, float sf, float sb, float L) {
@@ -106,13 +121,14 @@ vec3 piColor(FrameParams fp, float sf, float sb, float L) {
   uvec3 lo = min(floorIndex(x), size - 1u);
   uvec3 hi = min(lo + 1u, size - 1u);
   vec3 w = x - vec3(lo);
-  SmVec4s table = SmVec4s(fp.preintegration);
+  SmUint64s table = SmUint64s(fp.preintegration);
+  // Unrolled: the eight gathers are independent, so their latencies overlap.
   vec3 r = vec3(0.0);
-  SM_NO_UNROLL for (uint c = 0u; c < 8u; ++c) {
+  [[unroll]] for (uint c = 0u; c < 8u; ++c) {
     bvec3 up = bvec3((c & 1u) != 0u, (c & 2u) != 0u, (c & 4u) != 0u);
     uvec3 at = mix(lo, hi, up);
     vec3 wc = mix(1.0 - w, w, vec3(up));
-    r += wc.x * wc.y * wc.z * table.v[(at.z * size.y + at.y) * size.x + at.x].rgb;
+    r += wc.x * wc.y * wc.z * piColorEntry(table, (at.z * size.y + at.y) * size.x + at.x);
   }
   return r;
 }
@@ -120,30 +136,46 @@ vec3 piColor(FrameParams fp, float sf, float sb, float L) {
 // A piece whose scalar stays within [piLo, piHi].
 vec4 piInside(FrameParams fp, float sf, float sb, float L) {
   float ds = sb - sf;
-  float mean = abs(ds) > 1e-3 * (fp.piHi - fp.piLo)
-                   ? (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds
-                   : transferLookup(fp, 0.5 * (sf + sb)).a * fp.sigmaScale;
+  float mean;
+  // A branch, not a selection, so that a SIMD batch whose pieces all change enough skips the
+  // transfer function's gathers.
+  if (abs(ds) > 1e-3 * (fp.piHi - fp.piLo)) mean = (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds;
+  else mean = transferLookup(fp, 0.5 * (sf + sb)).a * fp.sigmaScale;
   float alpha = 1.0 - exp(-L * max(mean, 0.0));
   return vec4(piColor(fp, sf, sb, L) * alpha, alpha);
 }
 
+// A piece of length L outside [piLo, piHi], where the function is constant: closed form, from the
+// end values (rgb, extinction) stored after the cumulative pairs.
+vec4 piConstant(FrameParams fp, bool above, float L) {
+  SmUint64s ends = SmUint64s(fp.piCumulative + 8ul * uint64_t(fp.piCumulativeBins - 1u));
+  uint at = above ? 2u : 0u;
+  vec4 e = vec4(unpackFloats(ends.v[at]), unpackFloats(ends.v[at + 1u]));
+  float alpha = 1.0 - exp(-L * e.a);
+  return vec4(e.rgb * alpha, alpha);
+}
+
 // Colour (premultiplied) and opacity of a piece of length L with the scalar running linearly from
-// sf to sb: split where the scalar leaves the range, outside of which the function is constant.
+// sf to sb: [0, c1] outside on sf's side, [c1, c2] inside the range, [c2, 1] outside on sb's side.
+// The outside pieces are rare; behind branches, a SIMD batch without one skips them.
 vec4 preintegrated(FrameParams fp, float sf, float sb, float L) {
   if (!(L > 0.0) || isnan(sf) || isinf(sf) || isnan(sb) || isinf(sb)) return vec4(0.0);
-  float cuts[4] = float[4](0.0, 0.0, 0.0, 1.0);
+  float c1, c2;
   if (sb != sf) {
     float uLo = (fp.piLo - sf) / (sb - sf), uHi = (fp.piHi - sf) / (sb - sf);
-    cuts[1] = clamp(min(uLo, uHi), 0.0, 1.0);
-    cuts[2] = clamp(max(uLo, uHi), 0.0, 1.0);
+    c1 = clamp(min(uLo, uHi), 0.0, 1.0);
+    c2 = clamp(max(uLo, uHi), 0.0, 1.0);
+  } else {
+    c1 = sf >= fp.piLo && sf <= fp.piHi ? 0.0 : 1.0;
+    c2 = 1.0;
   }
   vec4 acc = vec4(0.0);
-  SM_NO_UNROLL for (uint i = 0u; i < 3u; ++i) {
-    float u0 = cuts[i], u1 = cuts[i + 1u];
-    if (!(u1 > u0)) continue;
-    float a = clamp(mix(sf, sb, u0), fp.piLo, fp.piHi), b = clamp(mix(sf, sb, u1), fp.piLo, fp.piHi);
-    acc += (1.0 - acc.a) * piInside(fp, a, b, (u1 - u0) * L);
+  if (c1 > 0.0) acc = piConstant(fp, sf > fp.piHi, c1 * L);
+  if (c2 > c1) {
+    float a = clamp(mix(sf, sb, c1), fp.piLo, fp.piHi), b = clamp(mix(sf, sb, c2), fp.piLo, fp.piHi);
+    acc += (1.0 - acc.a) * piInside(fp, a, b, (c2 - c1) * L);
   }
+  if (c2 < 1.0) acc += (1.0 - acc.a) * piConstant(fp, sb > fp.piHi, (1.0 - c2) * L);
   return acc;
 }
 

@@ -36,8 +36,8 @@ struct FrameParams {
   uint64_t fragments;         // fragment storage (encoding per the compositor)
   uint64_t stats;             // RenderStats
   uint64_t rays;              // 0: camera rays; else one RayDesc per "pixel" (width x 1 image)
-  uint64_t preintegration;    // element-exact mode: vec4 colours [(l * bins + b) * bins + f]
-  uint64_t piCumulative;      // ... and float cumulative extinction over [piLo, piHi]
+  uint64_t preintegration;    // element-exact mode: PreintegrationTable::deviceWords(): colours,
+  uint64_t piCumulative;      // ... cumulative extinction pairs (then the two ends' rgb, sigma)
   uint64_t segCache;          // cached two-pass: CachedSegment per slot, segCacheK slots per pixel
   // Camera, rebased to the scene origin.
   vec3 eye;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "common/parallel.h"
 
@@ -59,25 +60,71 @@ glm::dvec4 PreintegrationTable::integrateInside(double sf, double sb, double L) 
   return glm::dvec4(colorAt(sf, sb, L) * alpha, alpha);
 }
 
+glm::dvec4 PreintegrationTable::integrateConstant(glm::vec4 end, double L) {
+  double alpha = 1.0 - std::exp(-L * double(end.a));
+  return glm::dvec4(glm::dvec3(end) * alpha, alpha);
+}
+
 glm::dvec4 PreintegrationTable::integrate(double sf, double sb, double L) const {
   if (!(L > 0) || !std::isfinite(sf) || !std::isfinite(sb)) return glm::dvec4(0.0);
-  // Split where the scalar leaves [lo, hi]: outside, the transfer function is constant. Up to three
-  // pieces [0, c1], [c1, c2], [c2, 1]; the shader does the same.
-  double c1 = 0.0, c2 = 0.0;
+  // Three pieces: [0, c1] outside on sf's side, [c1, c2] inside [lo, hi], [c2, 1] outside on sb's
+  // side; the shader does the same.
+  double c1, c2;
   if (sb != sf) {
     double uLo = (lo - sf) / (sb - sf), uHi = (hi - sf) / (sb - sf);
     c1 = std::clamp(std::min(uLo, uHi), 0.0, 1.0);
     c2 = std::clamp(std::max(uLo, uHi), 0.0, 1.0);
+  } else {
+    c1 = sf >= lo && sf <= hi ? 0.0 : 1.0;
+    c2 = 1.0;
   }
-  const double cuts[4] = {0.0, c1, c2, 1.0};
   glm::dvec4 acc(0.0);
-  for (int i = 0; i < 3; ++i) {
-    double u0 = cuts[i], u1 = cuts[i + 1];
-    if (!(u1 > u0)) continue;
-    double a = std::clamp(sf + (sb - sf) * u0, lo, hi), b = std::clamp(sf + (sb - sf) * u1, lo, hi);
-    acc += (1.0 - acc.a) * integrateInside(a, b, (u1 - u0) * L);
+  if (c1 > 0.0) acc = integrateConstant(sf < lo ? below : above, c1 * L);
+  if (c2 > c1) {
+    double a = std::clamp(sf + (sb - sf) * c1, lo, hi), b = std::clamp(sf + (sb - sf) * c2, lo, hi);
+    acc += (1.0 - acc.a) * integrateInside(a, b, (c2 - c1) * L);
   }
+  if (c2 < 1.0) acc += (1.0 - acc.a) * integrateConstant(sb < lo ? below : above, (1.0 - c2) * L);
   return acc;
+}
+
+uint64_t PreintegrationTable::encodeColor(glm::vec3 c) {
+  constexpr double scale = double(uint64_t(1) << kColorBits);
+  constexpr uint64_t top = (uint64_t(1) << kColorBits) - 1;
+  uint64_t w = 0;
+  for (int i = 0; i < 3; ++i) {
+    double v = std::isfinite(c[i]) ? std::clamp(double(c[i]), 0.0, 1.0) : 0.0;
+    w |= std::min(uint64_t(std::llround(v * scale)), top) << (kColorBits * i);
+  }
+  return w;
+}
+
+glm::vec3 PreintegrationTable::decodeColor(uint64_t w) {
+  // float(code) * 2^-21 is exact, so this equals the shader's decoding bit for bit.
+  constexpr uint64_t top = (uint64_t(1) << kColorBits) - 1;
+  constexpr float step = 1.0f / float(uint64_t(1) << kColorBits);
+  glm::vec3 c;
+  for (int i = 0; i < 3; ++i) c[i] = float((w >> (kColorBits * i)) & top) * step;
+  return c;
+}
+
+std::vector<uint64_t> PreintegrationTable::deviceWords() const {
+  std::vector<uint64_t> w;
+  w.reserve(colors.size() + cumulative.size() + 3);
+  for (const glm::vec3& c : colors) w.push_back(encodeColor(c));
+  auto pack = [](float lo, float hi) {
+    uint32_t a, b;
+    std::memcpy(&a, &lo, 4);
+    std::memcpy(&b, &hi, 4);
+    return uint64_t(a) | uint64_t(b) << 32;
+  };
+  for (size_t i = 0; i + 1 < cumulative.size(); ++i)
+    w.push_back(pack(cumulative[i], cumulative[i + 1]));
+  for (glm::vec4 e : {below, above}) {
+    w.push_back(pack(e.r, e.g));
+    w.push_back(pack(e.b, e.a));
+  }
+  return w;
 }
 
 PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int scalarBins,
@@ -106,7 +153,10 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
     acc += (b - a) / 6.0 * (sigma(a) + 4 * sigma(0.5 * (a + b)) + sigma(b));
     t.cumulative[i] = float(acc);
   }
-  t.colors.assign(size_t(scalarBins) * scalarBins * lengthBins, glm::vec4(0.0f));
+  auto end = [&](double s) { return glm::vec4(glm::vec3(tf.lookup(s)), float(sigma(s))); };
+  t.below = end(t.lo);
+  t.above = end(t.hi);
+  t.colors.assign(size_t(scalarBins) * scalarBins * lengthBins, glm::vec3(0.0f));
   if (!(t.sigmaMax > 0)) return t;
   std::vector<double> lengths(lengthBins);
   for (int l = 0; l < lengthBins; ++l) {
@@ -140,7 +190,8 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
           weight += w;
         }
         glm::dvec3 mean = weight > 0 ? c / weight : col[quadrature / 2];
-        t.colors[(size_t(l) * scalarBins + b) * scalarBins + f] = glm::vec4(glm::vec3(mean), 0.0f);
+        t.colors[(size_t(l) * scalarBins + b) * scalarBins + f] =
+            PreintegrationTable::decodeColor(PreintegrationTable::encodeColor(glm::vec3(mean)));
       }
     }
   });

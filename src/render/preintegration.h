@@ -8,9 +8,16 @@
 //            tabulated over (sf, sb, sqrt(L sigmaMax / tauMax)) and interpolated trilinearly. N is
 //            smooth in all three, which keeps interpolation error small.
 // Outside [lo, hi] the transfer function is constant, so a piece is split where its scalar leaves
-// the range and the outside parts are integrated with the end values.
+// the range and the outside parts are integrated in closed form with the end values.
+//
+// On the device every table read is a gather per lane (lavapipe), so the tables are laid out for
+// few of them: a colour is three 21-bit fixed-point channels in one 64-bit word (one gather, not
+// three or four; the step, 2^-21, is far below the interpolation error), and the cumulative
+// extinction is stored as pairs (S[i], S[i+1]) (one gather per lookup, not two). The CPU works
+// with the same quantised colours, so it computes what the device does.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -22,17 +29,27 @@
 namespace sm::render {
 
 struct PreintegrationTable {
-  // Device layout: colors (vec4) then cumulative (float) in one buffer.
-  size_t deviceBytes() const {
-    return colors.size() * sizeof(glm::vec4) + cumulative.size() * sizeof(float);
-  }
+  // Device layout, one buffer of 64-bit words: colors (encodeColor), then the cumulative
+  // extinction as pairs (S[i], S[i+1]) for i < cumulative.size() - 1, then the two ends as vec4s
+  // (rgb, sigma): below lo, above hi.
+  std::vector<uint64_t> deviceWords() const;
+  size_t deviceColorBytes() const { return colors.size() * sizeof(uint64_t); }
+  size_t deviceCumulativeBytes() const { return (cumulative.size() - 1) * sizeof(uint64_t); }
+
+  // 21 bits per channel over [0, 1] (clamped); decodeColor(encodeColor(c)) is what both the
+  // device and integrate() use.
+  static constexpr int kColorBits = 21;
+  static uint64_t encodeColor(glm::vec3 c);
+  static glm::vec3 decodeColor(uint64_t w);
+
   int scalarBins = 0;  // of the colour table along sf and sb, over [lo, hi]
   int lengthBins = 0;  // along sqrt(tau / tauMax)
   double lo = 0, hi = 1;
   double sigmaMax = 0, tauMax = 0;
-  std::vector<float> cumulative;  // S at cumulativeBins points over [lo, hi] (per scalar unit)
-  std::vector<glm::vec4> colors;  // N: rgb (a unused) at [(l * bins + b) * bins + f]
-  std::vector<float> sigma;       // extinction per transfer-function entry over [lo, hi]
+  std::vector<float> cumulative;       // S at cumulativeBins points over [lo, hi] (per scalar unit)
+  std::vector<glm::vec3> colors;       // N (quantised) at [(l * bins + b) * bins + f]
+  std::vector<float> sigma;            // extinction per transfer-function entry over [lo, hi]
+  glm::vec4 below{0.0f}, above{0.0f};  // the function's rgb and extinction below lo and above hi
 
   // Below this scalar change (relative to the range) the mean extinction is taken at the midpoint:
   // the difference of S would cancel in single precision on the device.
@@ -46,6 +63,7 @@ struct PreintegrationTable {
   double sigmaAt(double s) const;       // the transfer function's extinction at s
   glm::dvec3 colorAt(double sf, double sb, double L) const;
   glm::dvec4 integrateInside(double sf, double sb, double L) const;
+  static glm::dvec4 integrateConstant(glm::vec4 end, double L);
 };
 
 PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int scalarBins = 128,

@@ -65,14 +65,12 @@ void Renderer::updatePreintegration(const RenderSettings& s) {
   if (preintegration_.valid() && key == preintegrationKey_) return;
   preintegrationTable_ = buildPreintegration(tf);
   const PreintegrationTable& t = preintegrationTable_;
-  const size_t colorBytes = t.colors.size() * sizeof(glm::vec4), bytes = t.deviceBytes();
+  const std::vector<uint64_t> words = t.deviceWords();
+  const size_t bytes = words.size() * sizeof(uint64_t);
   if (!preintegration_.valid() || preintegration_.size() < bytes)
     preintegration_ = vk::Buffer(ctx_, bytes, vk::kStorageUsage, vk::MemoryUse::Device,
                                  "pre-integrated transfer function");
-  std::vector<std::byte> packed(bytes);
-  std::memcpy(packed.data(), t.colors.data(), colorBytes);
-  std::memcpy(packed.data() + colorBytes, t.cumulative.data(), t.cumulative.size() * sizeof(float));
-  preintegration_.upload(packed.data(), bytes);
+  preintegration_.upload(words.data(), bytes);
   preintegrationKey_ = key;
 }
 
@@ -146,7 +144,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.piLengthBins = uint32_t(t.lengthBins);
     p.piSigmaMax = float(t.sigmaMax);
     p.piTauMax = float(t.tauMax);
-    p.piCumulative = p.preintegration + t.colors.size() * sizeof(glm::vec4);
+    p.piCumulative = p.preintegration + t.deviceColorBytes();
     p.piCumulativeBins = uint32_t(t.cumulative.size());
     p.piLo = float(t.lo);
     p.piHi = float(t.hi);

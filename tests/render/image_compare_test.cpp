@@ -108,6 +108,19 @@ TEST(ImageVsReference, ElementExactAgainstTheContinuousIntegral) {
                                  ref::test::cubeMesh(split, 3), linear, s, tight);
 }
 
+// Scalars on both sides of the transfer function's range: pieces are split where they leave it and
+// the outside parts integrated in closed form with the end values (the shader's piConstant).
+TEST(ImageVsReference, ElementExactBeyondTheTransferFunctionsRange) {
+  auto s = linearFieldSettings(2, 4);  // the field runs over [0, 6]
+  s.integration = Integration::ElementExact;
+  test::ImageCheck tight;
+  tight.maxRmse = 1e-4;
+  tight.maxAbs = 1e-3;
+  for (Split split : {Split::Tets5, Split::Hex})
+    expectExactMatchesContinuous("exact_outside_" + ref::test::splitName(split),
+                                 ref::test::cubeMesh(split, 3), linear, s, tight);
+}
+
 // A trilinear field is not linear along rays in hexahedra, wedges and pyramids: element-exact mode
 // takes it piecewise linear between points at most dt apart.
 double trilinear(const glm::dvec3& p) {
