@@ -28,7 +28,7 @@ for name in "${names[@]}"; do
     "$sm" bench prep --elements 1000000,5000000 --runs 3 --work-dir "$work" --json "$out/prep.json" \
       | tee "$out/prep.md" ;;
   render)
-    "$sm" bench render --sizes 512,1024 --runs 3 --vtk-runs 3 --work-dir "$work" \
+    "$sm" bench render --sizes 512,1024 --runs 3 --vtk-runs 3 --coarser 2,4,5 --work-dir "$work" \
       --json "$out/render.json" | tee "$out/render.md" ;;
   accuracy)
     "$sm" bench accuracy --size 320x240 --runs 3 --ranks 4 --clusters 32 --work-dir "$work" \
