@@ -34,7 +34,6 @@ struct PreintegrationTable {
   // (rgb, sigma): below lo, above hi.
   std::vector<uint64_t> deviceWords() const;
   size_t deviceColorBytes() const { return colors.size() * sizeof(uint64_t); }
-  size_t deviceCumulativeBytes() const { return (cumulative.size() - 1) * sizeof(uint64_t); }
 
   // 21 bits per channel over [0, 1] (clamped); decodeColor(encodeColor(c)) is what both the
   // device and integrate() use.

@@ -1,7 +1,6 @@
 #include "render/renderer.h"
 
 #include <chrono>
-#include <cstring>
 
 #include <glm/common.hpp>
 #include <glm/vector_relational.hpp>

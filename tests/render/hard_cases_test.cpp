@@ -293,6 +293,34 @@ TEST(HardCases, FullyOpaqueAndFullyTransparent) {
   for (const auto& p : clear.image.pixels) EXPECT_EQ(p, glm::vec4(0.0f));
 }
 
+// Early termination stops a ray's walk once its opacity reaches the threshold: in a dense medium
+// most of the samples and element steps are skipped, and no pixel changes by more than what the
+// remaining transmittance (1 - threshold) could still have added.
+TEST(HardCases, EarlyTerminationStopsTheWalk) {
+  auto m = ref::test::cubeMesh(Split::Tets5, 6);
+  auto f = smoothField(m, {0, 0, 0}, 1);
+  RenderSettings s = hardSettings(0, 2, 1);
+  s.width = s.height = 40;
+  s.camera.eye = {2.0, -1.5, 1.2};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.transferFunction.opacityScale = 40.0;  // a ray saturates within a few elements
+  s.earlyTermination = 2.0;
+  auto full = test::renderOnGpu(m, f, s);
+  s.earlyTermination = 0.99;
+  auto stopped = test::renderOnGpu(m, f, s);
+  EXPECT_EQ(stopped.validationErrors, 0u);
+  EXPECT_EQ(stopped.frame.counters.lostRays, 0u);
+  EXPECT_LT(stopped.frame.counters.samples * 3, full.frame.counters.samples);
+  EXPECT_LT(stopped.frame.counters.elementSteps * 2, full.frame.counters.elementSteps);
+  double worst = 0;
+  for (size_t i = 0; i < full.image.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      worst =
+          std::max(worst, double(std::abs(full.image.pixels[i][c] - stopped.image.pixels[i][c])));
+  EXPECT_LE(worst, 0.01 + 1e-6);
+  EXPECT_GT(worst, 0.0);  // it did stop early somewhere
+}
+
 TEST(HardCases, NanAndInfInScalars) {
   auto m = ref::test::cubeMesh(Split::Tets6, 4);
   auto f = smoothField(m, {0, 0, 0}, 1);
