@@ -73,6 +73,7 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   ElementArrays elements;
   for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) elements[t] = std::move(mesh.cells[t]);
   remapElements(elements, r.vertexSource);
+  orderElementsByVertex(elements, uint32_t(r.numVertices()));
   result.timings.vertexOrder = timer.seconds();
 
   timer.reset();

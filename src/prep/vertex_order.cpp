@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "common/check.h"
+
 namespace sm::prep {
 namespace {
 
@@ -59,6 +61,31 @@ std::vector<uint32_t> globalVertexOrder(const std::vector<glm::dvec3>& points,
   std::vector<uint32_t> order(points.size());
   for (size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
   return order;
+}
+
+void orderElementsByVertex(ElementArrays& elements, uint32_t numVertices) {
+  std::vector<uint32_t> start;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = gpu::SM_NUM_VERTS[t];
+    std::vector<uint32_t>& cells = elements[t];
+    const size_t n = cells.size() / nv;
+    if (n < 2) continue;
+    auto key = [&](size_t e) { return *std::min_element(&cells[e * nv], &cells[e * nv] + nv); };
+    // Counting sort on the key: linear, and stable, so the order is a function of the input.
+    start.assign(size_t(numVertices) + 1, 0);
+    for (size_t e = 0; e < n; ++e) {
+      const uint32_t k = key(e);
+      SM_CHECK_LT(k, numVertices);
+      ++start[k + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<uint32_t> sorted(cells.size());
+    for (size_t e = 0; e < n; ++e) {
+      const size_t to = start[key(e)]++;
+      std::copy_n(&cells[e * nv], nv, &sorted[to * nv]);
+    }
+    cells.swap(sorted);
+  }
 }
 
 }  // namespace sm::prep

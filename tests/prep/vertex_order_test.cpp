@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "partition_free_extract.h"
@@ -45,6 +46,34 @@ TEST(VertexOrder, MortonCodeInterleavesAxes) {
   EXPECT_EQ(mortonCode(glm::dvec3(1, 0, 0), b) & 7u, 1u);
   EXPECT_EQ(mortonCode(glm::dvec3(0, 1, 0), b) & 7u, 2u);
   EXPECT_EQ(mortonCode(glm::dvec3(0, 0, 1), b) & 7u, 4u);
+}
+
+// Elements are reordered by their smallest vertex id, stably, each element's vertex list intact.
+TEST(VertexOrder, ElementsFollowTheirSmallestVertex) {
+  ElementArrays e;
+  e[gpu::SM_TET] = {5, 9, 7, 8, 2, 6, 3, 4, 9, 5, 8, 6, 2, 1, 7, 3};
+  e[gpu::SM_WED] = {4, 5, 6, 7, 8, 9};  // one element: unchanged
+  orderElementsByVertex(e, 10);
+  EXPECT_EQ(e[gpu::SM_TET],
+            (std::vector<uint32_t>{2, 1, 7, 3, 2, 6, 3, 4, 5, 9, 7, 8, 9, 5, 8, 6}));
+  EXPECT_EQ(e[gpu::SM_WED], (std::vector<uint32_t>{4, 5, 6, 7, 8, 9}));
+}
+
+// After preparation, elements of every type lie in the order of their smallest global vertex (what
+// makes a walk's reads local), and the mesh is the same mesh: every face still has its neighbour.
+TEST(VertexOrder, PreparedElementsAreInVertexOrder) {
+  auto m = test::kuhnTetGrid(5);
+  PrepOptions plain;
+  plain.compact = false;
+  auto r = prepareRank(m, makeGlobalFrame(m.bounds()), plain).rank;
+  const std::vector<uint32_t>& tets = r.elements[gpu::SM_TET];
+  ASSERT_EQ(tets.size(), 4u * 6 * 5 * 5 * 5);
+  uint32_t last = 0;
+  for (size_t i = 0; i < tets.size(); i += 4) {
+    uint32_t k = std::min({tets[i], tets[i + 1], tets[i + 2], tets[i + 3]});
+    EXPECT_LE(last, k) << "element " << i / 4;
+    last = k;
+  }
 }
 
 }  // namespace
