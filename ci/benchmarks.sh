@@ -34,7 +34,7 @@ for name in "${names[@]}"; do
     "$sm" bench accuracy --size 320x240 --runs 3 --ranks 4 --clusters 32 --work-dir "$work" \
       --json "$out/accuracy.json" --markdown "$out/accuracy.md" --plot "$out/accuracy.png" ;;
   features)
-    "$sm" bench features --size 384 --runs 3 --rounds 3 --work-dir "$work" \
+    "$sm" bench features --size 384 --runs 3 --rounds 5 --work-dir "$work" \
       --json "$out/features.json" --markdown "$out/features.md" ;;
   time)
     # The paper's measure: frames per second averaged over 20 time steps, several runs; scalars
