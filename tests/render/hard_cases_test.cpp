@@ -32,6 +32,15 @@ RenderSettings hardSettings(double lo, double hi, double size) {
   return s;
 }
 
+// The unit cube seen at an angle from outside, size x size pixels.
+RenderSettings cubeView(int size) {
+  RenderSettings s = hardSettings(0, 2, 1);
+  s.width = s.height = size;
+  s.camera.eye = {2.0, -1.5, 1.2};
+  s.camera.at = {0.5, 0.5, 0.5};
+  return s;
+}
+
 struct RayTolerance {
   double color = 2e-4;            // composited RGBA per ray
   double tieFraction = 1e-3;      // rays allowed to differ by one boundary sample
@@ -278,10 +287,7 @@ TEST(HardCases, CameraInsideTheVolume) {
 TEST(HardCases, FullyOpaqueAndFullyTransparent) {
   auto m = ref::test::cubeMesh(Split::Wedges, 3);
   auto f = smoothField(m, {0, 0, 0}, 1);
-  RenderSettings s = hardSettings(0, 2, 1);
-  s.width = s.height = 40;
-  s.camera.eye = {2.0, -1.5, 1.2};
-  s.camera.at = {0.5, 0.5, 0.5};
+  RenderSettings s = cubeView(40);
   s.transferFunction.opacityScale = 1e4;  // opaque at the first sample
   s.earlyTermination = 0.99;
   auto opaque = test::renderOnGpu(m, f, s);
@@ -299,10 +305,7 @@ TEST(HardCases, FullyOpaqueAndFullyTransparent) {
 TEST(HardCases, EarlyTerminationStopsTheWalk) {
   auto m = ref::test::cubeMesh(Split::Tets5, 6);
   auto f = smoothField(m, {0, 0, 0}, 1);
-  RenderSettings s = hardSettings(0, 2, 1);
-  s.width = s.height = 40;
-  s.camera.eye = {2.0, -1.5, 1.2};
-  s.camera.at = {0.5, 0.5, 0.5};
+  RenderSettings s = cubeView(40);
   s.transferFunction.opacityScale = 40.0;  // a ray saturates within a few elements
   s.earlyTermination = 2.0;
   auto full = test::renderOnGpu(m, f, s);
@@ -325,10 +328,7 @@ TEST(HardCases, NanAndInfInScalars) {
   auto m = ref::test::cubeMesh(Split::Tets6, 4);
   auto f = smoothField(m, {0, 0, 0}, 1);
   for (size_t i = 0; i < f.size(); i += 7) f[i] = (i % 2) ? NAN : INFINITY;
-  RenderSettings s = hardSettings(0, 2, 1);
-  s.width = s.height = 40;
-  s.camera.eye = {2.0, -1.5, 1.2};
-  s.camera.at = {0.5, 0.5, 0.5};
+  RenderSettings s = cubeView(40);
   auto g = test::renderOnGpu(m, f, s);
   auto e = test::expectImagesClose("nan_scalars", test::renderReference(m, f, s), g.image);
   EXPECT_EQ(e.nanPixels, 0);
@@ -369,10 +369,7 @@ TEST(HardCases, HundredsOfFragmentsPerPixel) {
 // Every march has a step bound: a tiny bound stops rays (counted) instead of running on.
 TEST(HardCases, StepBoundTerminates) {
   auto m = ref::test::cubeMesh(Split::Tets6, 6);
-  RenderSettings s = hardSettings(0, 2, 1);
-  s.width = s.height = 24;
-  s.camera.eye = {2.0, -1.5, 1.2};
-  s.camera.at = {0.5, 0.5, 0.5};
+  RenderSettings s = cubeView(24);
   s.maxElementSteps = 3;
   auto g = test::renderOnGpu(m, smoothField(m, {0, 0, 0}, 1), s);
   EXPECT_GT(g.frame.counters.stepLimitHits, 0u);
