@@ -8,14 +8,17 @@
 // holds it. Not uint(x): lavapipe converts a float to an integer one lane at a time (LLVM's
 // saturating conversion, scalarised), eight conversions and compares per sample; this is a
 // vector floor, add and subtract. NaN gives some large value, which the callers' min() bounds.
+const float kTwo23 = 8388608.0;
+const uint kTwo23Bits = 0x4B000000u;  // floatBitsToUint(kTwo23); kTwo23 + n has bits kTwo23Bits + n
+
 uint floorIndex(float x) {
-  precise float f = floor(x) + 8388608.0;
-  return floatBitsToUint(f) - 0x4B000000u;
+  precise float f = floor(x) + kTwo23;
+  return floatBitsToUint(f) - kTwo23Bits;
 }
 
 uvec3 floorIndex(vec3 x) {
-  precise vec3 f = floor(x) + vec3(8388608.0);
-  return floatBitsToUint(f) - uvec3(0x4B000000u);
+  precise vec3 f = floor(x) + vec3(kTwo23);
+  return floatBitsToUint(f) - uvec3(kTwo23Bits);
 }
 
 // Entries i and min(i + 1, n - 1) of the table, interpolated. Every per-lane load is a gather on
@@ -103,7 +106,7 @@ float piCumulativeAt(FrameParams fp, float s) {
 
 // float(code) for a code below 2^23, by the mantissa trick of floorIndex (vector operations).
 vec3 codeToFloat(uvec3 code) {
-  return uintBitsToFloat(code | uvec3(0x4B000000u)) - vec3(8388608.0);
+  return uintBitsToFloat(code | uvec3(kTwo23Bits)) - vec3(kTwo23);
 }
 
 // PreintegrationTable::decodeColor: three 21-bit channels, times 2^-21 (exact).

@@ -1,8 +1,8 @@
 #include "render/preintegration.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstring>
 
 #include "common/parallel.h"
 
@@ -113,10 +113,7 @@ std::vector<uint64_t> PreintegrationTable::deviceWords() const {
   w.reserve(colors.size() + cumulative.size() + 3);
   for (const glm::vec3& c : colors) w.push_back(encodeColor(c));
   auto pack = [](float lo, float hi) {
-    uint32_t a, b;
-    std::memcpy(&a, &lo, 4);
-    std::memcpy(&b, &hi, 4);
-    return uint64_t(a) | uint64_t(b) << 32;
+    return uint64_t(std::bit_cast<uint32_t>(lo)) | uint64_t(std::bit_cast<uint32_t>(hi)) << 32;
   };
   for (size_t i = 0; i + 1 < cumulative.size(); ++i)
     w.push_back(pack(cumulative[i], cumulative[i + 1]));

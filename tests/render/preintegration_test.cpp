@@ -1,8 +1,8 @@
 // Known answers for the pre-integrated transfer function (CPU, no device).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include <glm/vec2.hpp>
@@ -101,9 +101,7 @@ TEST(Preintegration, DeviceLayoutHoldsColoursPairsAndEnds) {
   for (size_t i = 0; i < nc; ++i)
     ASSERT_EQ(PreintegrationTable::decodeColor(w[i]), t.colors[i]) << i;
   auto floats = [](uint64_t x) {
-    float f[2];
-    std::memcpy(f, &x, 8);
-    return glm::vec2(f[0], f[1]);
+    return glm::vec2(std::bit_cast<float>(uint32_t(x)), std::bit_cast<float>(uint32_t(x >> 32)));
   };
   for (size_t i = 0; i + 1 < ns; ++i) {
     ASSERT_EQ(floats(w[nc + i]), glm::vec2(t.cumulative[i], t.cumulative[i + 1])) << i;
