@@ -41,6 +41,8 @@ uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool
               uint segBase, inout DcListWriter wr, inout uint fragments, inout SegmentStats st) {
   vec2 box = boxSpan(fr, fp);
   float tBoxIn = box.x, tBox = box.y;
+  // A ray that misses the box misses the volume: no query for it.
+  if (tBox < tBoxIn - kSamePlace * abs(tBoxIn)) return 0u;
   // The next entry is most often where the ray enters the box (a far field fills its box) or
   // where the last segment ended (clusters side by side): probe there first (nextCrossing), a
   // thousandth of the box's depth on, far more than float rounding of either.
@@ -73,6 +75,7 @@ uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool
       break;
     }
   }
+  st.queries += tr.queries;
   return n;
 }
 

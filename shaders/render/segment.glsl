@@ -7,10 +7,10 @@
 #include "fragment_list.glsl"
 
 struct SegmentStats {
-  uint lost, grazing, walks, stepLimit, steps, samples, inside, boxExits;
+  uint lost, grazing, walks, stepLimit, steps, samples, inside, boxExits, queries;
 };
 
-SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u); }
+SegmentStats noStats() { return SegmentStats(0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u); }
 
 // Integrates `seg`, sampling from max(its entry, prevEnd) on; returns false when the segment gives
 // no fragment (in device-triangle mode, the exact predicates may say the ray only grazes there).
@@ -61,8 +61,9 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
   if (boxExits != 0u && subgroupElect()) atomicAdd(s.s.boxExits, boxExits);
   if (overflow != 0u) atomicAdd(s.s.overflow, overflow);
   uint steps = subgroupAdd(st.steps), samples = subgroupAdd(st.samples);
-  uint segs = subgroupAdd(segments), frags = subgroupAdd(fragments);
+  uint segs = subgroupAdd(segments), frags = subgroupAdd(fragments), queries = subgroupAdd(st.queries);
   if (subgroupElect()) {
+    atomicAdd(s.s.shellQueries, queries);
     atomicAdd(s.s.elementSteps, steps);
     atomicAdd(s.s.samples, samples);
     atomicAdd(s.s.segments, segs);

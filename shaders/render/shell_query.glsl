@@ -85,11 +85,12 @@ bool deviceCrossing(RayFrame fr, float tPrev, float tMax, int side, out uint tri
 // search runs again over the whole ray. One query call site either way (a loop, not two calls:
 // Mesa inlines each call, and each copy of the query costs compile time).
 bool nextCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, int side, float probe, out uint tri,
-                  out float t) {
+                  out float t, inout uint queries) {
   const float tMax = 3.0e38;
   bool probing = probe > max(tPrev, 0.0) && probe < tMax;
   for (uint attempt = probing ? 0u : 1u; attempt < 2u; ++attempt) {
     float limit = attempt == 0u ? probe : tMax;
+    queries += 1u;
     bool found = kExactShell ? exactCrossing(fr, sc, tPrev, triPrev, limit, side, tri, t)
                              : deviceCrossing(fr, tPrev, limit, side, tri, t);
     if (found) return true;
@@ -106,6 +107,7 @@ struct Traversal {
   float tFirstExit;
   uint firstExit;
   Segment prev;  // last entry yielded (or the search start)
+  uint queries;  // acceleration-structure queries made so far (--stats)
 };
 
 Segment firstSearchPoint() {
@@ -123,6 +125,7 @@ Traversal beginTraversal(FrameParams fp) {
   tr.tFirstExit = 0.0;
   tr.firstExit = kNoTriangle;
   tr.prev = firstSearchPoint();
+  tr.queries = 0u;
   return tr;
 }
 
@@ -134,7 +137,7 @@ bool nextSegment(RayFrame fr, SceneRefs sc, inout Traversal tr, float probe, out
     bool entries = tr.phase != 0u;
     uint tri;
     float t;
-    bool found = nextCrossing(fr, sc, tr.prev.tEntry, tr.prev.entryTriangle, entries ? -1 : 1, probe, tri, t);
+    bool found = nextCrossing(fr, sc, tr.prev.tEntry, tr.prev.entryTriangle, entries ? -1 : 1, probe, tri, t, tr.queries);
     if (tr.phase == 0u) {
       if (!found) return false;  // no exit ahead at all: nothing of this rank on the ray
       tr.tFirstExit = t;

@@ -30,5 +30,8 @@ void main() {
     if (store) SmSegments(fp.segments).v[base + n] = seg;
     n += 1u;
   }
-  if (!store) SmUints(fp.segCounts).v[pixel] = n;
+  if (store) return;
+  SmUints(fp.segCounts).v[pixel] = n;
+  uint queries = subgroupAdd(tr.queries);
+  if (subgroupElect()) atomicAdd(SmStats(fp.stats).s.shellQueries, queries);
 }

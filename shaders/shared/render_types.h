@@ -115,7 +115,7 @@ struct RenderStats {
   uint samples;       // samples taken (wraps on huge frames; for rates only)
   uint cameraInside;  // rays whose first segment starts at the camera
   uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
-  uint pad1;
+  uint shellQueries;  // acceleration-structure queries (a probe that finds nothing is one more)
 };
 
 #ifdef __cplusplus

@@ -99,9 +99,9 @@ TEST(TracingModes, CachedAndStageSplitListsAreIdentical) {
   }
 }
 
-// Rays leaving a box-shaped volume end their traversal there (no query for entries beyond); rays
-// leaving the front block between the slabs go on and find them, and the image matches the
-// reference either way.
+// Rays leaving a box-shaped volume end their traversal there (no query for entries beyond), and
+// rays missing the box make no query at all; rays leaving the front block between the slabs go on
+// and find them, and the image matches the reference either way.
 TEST(TracingModes, TraversalEndsAtTheBoundingBoxOnly) {
   // One cube: every ray that enters leaves through the bounding box.
   auto cube = ref::test::cubeMesh(Split::Tets6, 3);
@@ -113,6 +113,9 @@ TEST(TracingModes, TraversalEndsAtTheBoundingBoxOnly) {
   auto g = test::renderOnGpu(cube, fc, s);
   EXPECT_GT(g.frame.counters.segments, 0u);
   EXPECT_EQ(g.frame.counters.boxExits, g.frame.counters.segments);
+  // One query per ray that enters (the probe at the box finds the entry), none for the others.
+  EXPECT_LT(g.frame.counters.segments, uint32_t(s.width * s.height));
+  EXPECT_EQ(g.frame.counters.shellQueries, g.frame.counters.segments);
   test::expectImagesClose("box_exit_cube", test::renderReference(cube, fc, s), g.image);
   // Block and slabs: a ray through the block exits through its back face, inside the box.
   auto m = layeredSlabs();
@@ -122,6 +125,7 @@ TEST(TracingModes, TraversalEndsAtTheBoundingBoxOnly) {
   auto h = test::renderOnGpu(m, f, t);
   EXPECT_GT(h.frame.counters.boxExits, 0u);
   EXPECT_LT(h.frame.counters.boxExits, h.frame.counters.segments);
+  EXPECT_GT(h.frame.counters.shellQueries, h.frame.counters.segments);  // "none beyond" costs one
   size_t pixelsWithSlabs = 0;
   for (const auto& p : h.segments) pixelsWithSlabs += p.size() >= 3 ? 1 : 0;
   EXPECT_GT(pixelsWithSlabs, 50u);

@@ -51,6 +51,7 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
   m.fragments = frame.counters.fragments;
   m.lostRays = frame.counters.lostRays;
   m.boxExits = frame.counters.boxExits;
+  m.shellQueries = frame.counters.shellQueries;
   m.fused = frame.timings.fused;
   m.image = scene::Image(s.width, s.height);
   m.image.pixels = std::move(frame.pixels);
@@ -75,6 +76,7 @@ nlohmann::json toJson(const RenderMeasurement& m) {
   j["fragments"] = m.fragments;
   j["lost_rays"] = m.lostRays;
   j["box_exits"] = m.boxExits;
+  j["shell_queries"] = m.shellQueries;
   j["fused"] = m.fused;
   j["stages_ms"] = {{"traversal", median(m.traversalMs)},
                     {"scan", median(m.scanMs)},
