@@ -47,6 +47,10 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
   EXPECT_EQ(split["label"].get<std::string>(), "shellmarch compacted stage-split");
   EXPECT_FALSE(split["fused"].get<bool>());
   EXPECT_GT(split["stages_ms"]["march"].get<double>(), 0.0);
+  // Both tracers count their shell queries: at least one per segment found.
+  for (const auto* run : {&size0["shellmarch"]["compacted"], &split})
+    EXPECT_GE((*run)["shell_queries"].get<uint64_t>(), (*run)["segments"].get<uint64_t>()) << *run;
+  EXPECT_GT(split["segments"].get<uint64_t>(), 0u);
   EXPECT_EQ(size0["errors"]["shellmarch compacted stage-split"]["grid"]["rmse"].get<double>(),
             size0["errors"]["shellmarch compacted"]["grid"]["rmse"].get<double>());
   EXPECT_NE(log.find("stage-split"), std::string::npos) << log;
