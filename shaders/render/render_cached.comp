@@ -1,9 +1,11 @@
 #version 460
 // Two-pass (exact) lists with one traversal. Count pass: trace and march each pixel's ray, keep the
 // first segCacheK segments with their fragments in the pixel's cache slots, write the segment
-// count (the list's capacity). Store pass, after the prefix sum: copy the cached segments and
-// fragments to the pixel's place in the lists; a pixel with more segments than slots traces its
-// ray again (the same code on the same data gives the same segments and fragments).
+// count (the list's capacity) and count the pixels with more segments than slots. Store pass,
+// after the prefix sum: store_cached.comp copies the cached segments and fragments to the pixel's
+// place in the lists; this pipeline's store pass, dispatched only when some pixel has more
+// segments than slots, traces those pixels' rays again (the same code on the same data gives the
+// same segments and fragments).
 //
 // One pipeline for both passes (the pass is a push constant, not a specialisation constant) and one
 // call site of traceRay: the tracer is most of the shader, and each copy of it costs lavapipe
@@ -19,14 +21,6 @@ layout(push_constant, scalar) uniform Push {
   uint store;  // 0: count pass, 1: store pass
 } pc;
 
-void copyCached(FrameParams fp, uint pixel, uint base, uint n, inout DcListWriter wr) {
-  for (uint i = 0u; i < n; ++i) {
-    CachedSegment c = SmCachedSegments(fp.segCache).v[pixel * fp.segCacheK + i];
-    SmSegments(fp.segments).v[base + i] = c.segment;
-    if (c.hasFragment != 0u) dcWrite(wr, DcFragment(c.color, c.depth));
-  }
-}
-
 void main() {
   FrameParams fp = SmParams(pc.params).p;
   bool store = pc.store != 0u;
@@ -38,23 +32,26 @@ void main() {
   DcListWriter wr = dcBegin(fp.fragments, 0u, 0u);
   bool trace = inImage;
   if (store && inImage) {
-    base = SmUints(fp.segOffsets).v[pixel];
     nseg = SmUints(fp.segCounts).v[pixel];
+    trace = nseg > fp.segCacheK;  // else store_cached.comp copied the pixel's cache
+    base = SmUints(fp.segOffsets).v[pixel];
     wr = dcBegin(fp.fragments, base, nseg);
-    trace = nseg > fp.segCacheK;
-    if (!trace) copyCached(fp, pixel, base, nseg, wr);
   }
+  if (store && !trace) return;
   if (trace) {
     uint n = traceRay(pixelRay(fp, px), fp, pixel, store ? nseg : fp.maxSegments,
-                      store ? RAY_TO_LIST : RAY_TO_CACHE, store, base, wr, fragments, st);
+                      store ? RAY_TO_LIST : RAY_TO_CACHE, store && fp.segments != 0ul, base, wr,
+                      fragments, st);
     if (!store) {
       nseg = n;
       SmUints(fp.segCounts).v[pixel] = nseg;
     }
   }
   if (store) {
-    if (inImage) dcEnd(wr, fp.fragCounts, pixel);
+    dcEnd(wr, fp.fragCounts, pixel);
     return;  // counted in the count pass already: a retraced pixel's statistics are dropped
   }
+  uint retraces = subgroupAdd(nseg > fp.segCacheK ? 1u : 0u);
+  if (retraces != 0u && subgroupElect()) atomicAdd(SmStats(fp.stats).s.cacheRetraces, retraces);
   flushStats(fp, st, nseg, fragments, 0u);
 }

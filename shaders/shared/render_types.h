@@ -116,6 +116,8 @@ struct RenderStats {
   uint cameraInside;  // rays whose first segment starts at the camera
   uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
   uint shellQueries;  // acceleration-structure queries (a probe that finds nothing is one more)
+  uint cacheRetraces; // cached two-pass lists: pixels with more segments than cache slots, traced
+                      // again in the store pass
 };
 
 #ifdef __cplusplus
@@ -124,7 +126,7 @@ static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FramePa
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(CachedSegment) == 40, "CachedSegment layout");
-static_assert(sizeof(RenderStats) == 48, "RenderStats layout");
+static_assert(sizeof(RenderStats) == 52, "RenderStats layout");
 }  // namespace sm::gpu
 #endif
 

@@ -91,6 +91,7 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
   fr["camera_inside_rays"] = coll_.sum(uint64_t(f.counters.cameraInside));
   fr["box_exits"] = coll_.sum(uint64_t(f.counters.boxExits));
   fr["shell_queries"] = coll_.sum(uint64_t(f.counters.shellQueries));
+  fr["cache_retraces"] = coll_.sum(uint64_t(f.counters.cacheRetraces));
   fr["fused"] = f.timings.fused;
   // Integration (traversal + marching) against compositing, slowest rank each.
   fr["integration_ms"] = coll_.max(f.timings.traversalMs + f.timings.scanMs + f.timings.marchMs);
@@ -152,9 +153,10 @@ void StatsReport::printFrame(const nlohmann::json& fr) const {
       "    lost rays %llu, grazing %llu, entry corrections %llu, step-limit hits %llu, overflow "
       "%llu; "
       "%llu samples, %llu element steps, %llu shell queries, %llu rays ended at the bounding "
-      "box\n",
+      "box, %llu traced again (more segments than cache slots)\n",
       u("lost_rays"), u("grazing_skips"), u("entry_corrections"), u("step_limit_hits"),
-      u("fragment_overflow"), u("samples"), u("element_steps"), u("shell_queries"), u("box_exits"));
+      u("fragment_overflow"), u("samples"), u("element_steps"), u("shell_queries"), u("box_exits"),
+      u("cache_retraces"));
   if (coll_.size() > 1)
     for (const auto& r : fr["ranks"])
       std::printf(

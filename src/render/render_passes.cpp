@@ -67,6 +67,15 @@ void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h
   dispatchPixels(pipeline_, cmd, params, w, h);
 }
 
+StoreCachedPass::StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
+                                 const comp::DeepCompositor& c)
+    : pipeline_(makePipeline(ctx, "store cached", spv::store_cached(),
+                             sceneSpecialization(ctx, scene, c, PassOptions{}), false, scene)) {}
+
+void StoreCachedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
+  pipeline_.dispatch(cmd, vk::groupsFor(uint64_t(w) * uint64_t(h), 64), 1, 1, Push{params});
+}
+
 FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
                      PassOptions options)
     : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),

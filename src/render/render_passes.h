@@ -32,8 +32,8 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
 // frame on lavapipe).
 //   Traversal (traverse.comp): the stage-split tracer's traversal, counting then storing segments.
 //   Cached (render_cached.comp): the count pass traces and marches, caching each pixel's first
-//     segments and fragments; the store pass copies them into the lists and traces again only
-//     the pixels with more segments than cache slots.
+//     segments and fragments; the store pass traces again the pixels with more segments than
+//     cache slots (StoreCachedPass copies the others).
 enum class CountStoreKind { Traversal, Cached };
 
 class CountStorePass {
@@ -51,6 +51,19 @@ class MarchPass {
  public:
   MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
             PassOptions options);
+  void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
+
+ private:
+  vk::ComputePipeline pipeline_;
+};
+
+// The cached lists' copy: each pixel whose segments all fit in the cache gets its cached segments
+// and fragments at its place in the lists (store_cached.comp). A small pipeline, so that the
+// tracer's runs only where rays must be traced again.
+class StoreCachedPass {
+ public:
+  StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
+                  const comp::DeepCompositor& compositor);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:

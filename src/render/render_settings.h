@@ -40,6 +40,11 @@ struct RenderSettings {
   // slot per pixel fits, or with 0, the stage-split passes run instead (traversal twice, then
   // marching), which also time traversal and marching apart.
   uint64_t segmentCacheBytes = uint64_t(256) << 20;
+  // Cached two-pass frames: also write each pixel's segment list (Renderer::lastSegments(), for
+  // tests and diagnostics). Off, only the fragment lists are written: nothing downstream reads the
+  // segments of a frame whose marching is done, and on lavapipe writing them was half of the
+  // store pass. The stage-split tracer always writes them (its march pass reads them).
+  bool keepSegments = false;
   // Deep (exact, the paper's) or single-fragment compositing (IceT-like, for comparison).
   comp::CompositeMethod compositeMethod = comp::CompositeMethod::Deep;
 };

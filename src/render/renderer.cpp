@@ -215,12 +215,14 @@ double Renderer::timedDispatch(const std::function<void(VkCommandBuffer)>& recor
   return timestamps_.ms(timestamps_.results(2), 0, 1);
 }
 
-void Renderer::scanCounts(gpu::FrameParams& p, FrameResult& out) {
+void Renderer::scanCounts(gpu::FrameParams& p, FrameResult& out, bool segments) {
   auto t0 = std::chrono::steady_clock::now();
   out.segments = compositor_.prepareLists();
   lastSegmentTotal_ = out.segments;
+  lastSegmentsKept_ = segments;
   out.timings.scanMs = msSince(t0);
-  ensureSegments(p, out.segments);
+  ensureSegments(p, segments ? out.segments : 0);
+  if (!segments) p.segments = 0;  // the shaders write no segment where the address is 0
   writeParams(p);
 }
 
@@ -233,7 +235,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
   out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
     traversal_->recordCount(cmd, params_.address(), s.width, s.height);
   });
-  scanCounts(p, out);
+  scanCounts(p, out, true);
   // Pass 2: store the segments at the scanned offsets, then march them into fragments.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     timestamps_.reset(cmd);
@@ -291,10 +293,17 @@ void Renderer::renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameP
   writeParams(p);
   out.timings.traversalMs = timedDispatch(
       [&](VkCommandBuffer cmd) { pass.recordCount(cmd, params_.address(), s.width, s.height); });
-  scanCounts(p, out);
-  // Pass 2: copy into the lists at the scanned offsets (tracing again where the cache was short).
-  out.timings.marchMs = timedDispatch(
-      [&](VkCommandBuffer cmd) { pass.recordStore(cmd, params_.address(), s.width, s.height); });
+  scanCounts(p, out, s.keepSegments);
+  // Pass 2: copy into the lists at the scanned offsets, and trace again the pixels the cache was
+  // too short for, if any (the tracer's pipeline, run over every pixel, costs more than the copy).
+  gpu::RenderStats counters;
+  stats_.download(&counters, sizeof counters);
+  if (!storeCached_) storeCached_ = std::make_unique<StoreCachedPass>(ctx_, scene_, compositor_);
+  out.timings.marchMs = timedDispatch([&](VkCommandBuffer cmd) {
+    storeCached_->record(cmd, params_.address(), s.width, s.height);
+    // Disjoint pixels: the two passes need no barrier between them.
+    if (counters.cacheRetraces > 0) pass.recordStore(cmd, params_.address(), s.width, s.height);
+  });
 }
 
 void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
@@ -314,7 +323,7 @@ std::vector<uint32_t> Renderer::lastSegmentCounts() const {
 
 std::vector<std::vector<gpu::Segment>> Renderer::lastSegments() const {
   std::vector<std::vector<gpu::Segment>> out;
-  if (!twoPass() || !segments_.valid()) return out;
+  if (!twoPass() || !lastSegmentsKept_ || !segments_.valid()) return out;
   std::vector<uint32_t> counts = lastSegmentCounts();
   std::vector<gpu::Segment> all(lastSegmentTotal_);
   segments_.download(all.data(), all.size() * sizeof(gpu::Segment));

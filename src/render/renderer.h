@@ -53,7 +53,7 @@ class Renderer {
   std::vector<uint32_t> lastSegmentCounts() const;
   std::vector<uint32_t> lastFragmentCounts() const;
   // The segments traversal found in the last two-pass frame, per pixel (for tests that compare
-  // segment lists with the CPU reference).
+  // segment lists with the CPU reference); empty after a cached frame without keepSegments.
   std::vector<std::vector<gpu::Segment>> lastSegments() const;
   // This rank's fragments of the last frame per pixel, in list order (decoded to floats).
   std::vector<std::vector<comp::DcFragment>> lastFragments() const;
@@ -68,7 +68,7 @@ class Renderer {
   // One submission of `record` between timestamps: its device milliseconds.
   double timedDispatch(const std::function<void(VkCommandBuffer)>& record);
   // After a counting pass: prefix sum (the lists), segment storage, parameters for the next pass.
-  void scanCounts(gpu::FrameParams& p, FrameResult& out);
+  void scanCounts(gpu::FrameParams& p, FrameResult& out, bool segments);
   // False when the device has no room for a cache of `bytes` (the frame then runs stage-split).
   bool ensureSegmentCache(uint64_t bytes);
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
@@ -86,6 +86,7 @@ class Renderer {
   CountStorePass& cachedPass(PassOptions options);
   std::unique_ptr<CountStorePass> traversal_;
   std::unique_ptr<CountStorePass> cached_[PassOptions::kCombinations];
+  std::unique_ptr<StoreCachedPass> storeCached_;  // one for all: it neither traces nor marches
   std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
   std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
   PassOptions passOptions_;  // of the frame being rendered
@@ -94,6 +95,7 @@ class Renderer {
   PreintegrationTable preintegrationTable_;
   vk::Buffer params_, stats_, transferFunction_, segments_, segmentCache_, rays_;
   uint64_t lastSegmentTotal_ = 0;
+  bool lastSegmentsKept_ = false;  // whether the last frame wrote its segment lists
   uint64_t failedCacheBytes_ = 0;  // the smallest segment cache the device had no room for
   bool useRays_ = false;
   vk::TimestampQueries timestamps_;

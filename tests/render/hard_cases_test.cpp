@@ -359,6 +359,7 @@ TEST(HardCases, HundredsOfFragmentsPerPixel) {
     t.camera.at = {0.5, 0.5, 1};
     t.camera.up = {0, 1, 0};
     t.camera.fovyDeg = 10;
+    t.keepSegments = true;
     return t;
   }());
   const auto& centre = g.segments[8 * 16 + 8];

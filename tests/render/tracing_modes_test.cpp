@@ -36,6 +36,7 @@ RenderSettings slabSettings(double earlyTermination) {
   s.transferFunction.unitDistance = 0.4;
   s.dt = 0.017;
   s.earlyTermination = earlyTermination;
+  s.keepSegments = true;  // these tests compare the segment lists too
   s.camera.eye = {0.45, 0.4, -2.5};
   s.camera.at = {0.55, 0.5, 3.0};
   s.camera.up = {0, 1, 0};
@@ -92,11 +93,48 @@ TEST(TracingModes, CachedAndStageSplitListsAreIdentical) {
     size_t maxSegments = 0;
     for (const auto& p : stageSplit.segments) maxSegments = std::max(maxSegments, p.size());
     EXPECT_GE(maxSegments, et > 1.0 ? 5u : 1u);  // rays that overflow a one-slot cache exist
+    if (et > 1.0) {
+      // The count pass counts the pixels the store pass must trace again: those with more
+      // segments than slots.
+      uint32_t over1 = 0, over4 = 0;
+      for (const auto& p : stageSplit.segments) {
+        over1 += p.size() > 1 ? 1 : 0;
+        over4 += p.size() > 4 ? 1 : 0;
+      }
+      EXPECT_GT(over4, 0u);
+      EXPECT_EQ(single.frame.counters.cacheRetraces, over1);
+      EXPECT_EQ(cached.frame.counters.cacheRetraces, over4);
+    }
     std::string name = "early_termination_" + std::to_string(et);
     expectSameFrames(name + "_cache4", cached, stageSplit, et > 1.0);
     expectSameFrames(name + "_cache1", single, stageSplit, et > 1.0);
+    // Without keepSegments (the default) the cached frame writes no segment list; its fragments
+    // and image are the same.
+    RenderSettings lean = s;
+    lean.keepSegments = false;
+    auto leanFrame = test::renderOnGpu(m, f, lean);
+    expectSameFrames(name + "_lean", leanFrame, stageSplit, false);
+    EXPECT_TRUE(leanFrame.segments.empty()) << name;
     test::expectImagesClose(name, test::renderReference(m, f, s), cached.image);
   }
+}
+
+// Where every pixel's segments fit in the cache, the store pass only copies (the tracer's store
+// dispatch is skipped): the lists and image are still those of the stage-split tracer.
+TEST(TracingModes, StorePassCopiesWhenTheCacheHoldsEveryRay) {
+  auto cube = ref::test::cubeMesh(Split::Tets6, 3);
+  auto f = ref::test::pointField(cube, [](const glm::dvec3& p) { return p.x + p.y * p.z; });
+  RenderSettings s = slabSettings(2.0), split = s;
+  s.camera.eye = {2.1, 1.7, -1.6};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.camera.up = {0, 0, 1};
+  split = s;
+  split.segmentCacheBytes = 0;
+  auto cached = test::renderOnGpu(cube, f, s), stageSplit = test::renderOnGpu(cube, f, split);
+  EXPECT_TRUE(cached.frame.timings.fused);
+  EXPECT_GT(cached.frame.counters.segments, 0u);
+  EXPECT_EQ(cached.frame.counters.cacheRetraces, 0u);
+  expectSameFrames("cube_copy_only", cached, stageSplit, true);
 }
 
 // Rays leaving a box-shaped volume end their traversal there (no query for entries beyond), and

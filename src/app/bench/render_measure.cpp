@@ -52,6 +52,7 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
   m.lostRays = frame.counters.lostRays;
   m.boxExits = frame.counters.boxExits;
   m.shellQueries = frame.counters.shellQueries;
+  m.cacheRetraces = frame.counters.cacheRetraces;
   m.fused = frame.timings.fused;
   m.image = scene::Image(s.width, s.height);
   m.image.pixels = std::move(frame.pixels);
@@ -77,6 +78,7 @@ nlohmann::json toJson(const RenderMeasurement& m) {
   j["lost_rays"] = m.lostRays;
   j["box_exits"] = m.boxExits;
   j["shell_queries"] = m.shellQueries;
+  j["cache_retraces"] = m.cacheRetraces;
   j["fused"] = m.fused;
   j["stages_ms"] = {{"traversal", median(m.traversalMs)},
                     {"scan", median(m.scanMs)},

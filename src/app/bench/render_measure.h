@@ -20,7 +20,7 @@ struct RenderMeasurement {
   // clock it does not grow when other processes share the cores.
   std::vector<double> cpuMs;
   uint64_t samples = 0, elementSteps = 0, segments = 0, fragments = 0, lostRays = 0;  // per frame
-  uint64_t boxExits = 0, shellQueries = 0;
+  uint64_t boxExits = 0, shellQueries = 0, cacheRetraces = 0;
   bool fused = false;  // one trace pass (traversal and marching together), FrameTimings::fused
   scene::Image image;  // the last frame
 };
