@@ -13,9 +13,26 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
   const std::string mesh = writeTinyMesh(dir);
   const std::string json = dir + "/render.json";
   std::string log;
-  ASSERT_EQ(runTool({"bench", "render", "--mesh", mesh, "--sizes", "32,24x16", "--runs", "2",
-                     "--vtk-runs", "1", "--integrators", "linear", "--work-dir", dir + "/work",
-                     "--json", json},
+  ASSERT_EQ(runTool({"bench",
+                     "render",
+                     "--mesh",
+                     mesh,
+                     "--sizes",
+                     "32,24x16",
+                     "--runs",
+                     "2",
+                     "--vtk-runs",
+                     "1",
+                     "--integrators",
+                     "linear",
+                     "--pair-rounds",
+                     "2",
+                     "--pair-integrators",
+                     "linear",
+                     "--work-dir",
+                     dir + "/work",
+                     "--json",
+                     json},
                     dir, "render", log),
             0)
       << log;
@@ -26,9 +43,9 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
                                    "setup.load_seconds", "vtk.available", "goals",
                                    "sizes.1.width"};
   for (const char* mode : {"compacted", "plain"})
-    for (const char* k :
-         {"cold_first_frame_ms", "warm_ms", "frames_per_second", "samples_per_second",
-          "stages_ms.traversal", "stages_ms.scan", "stages_ms.march", "stages_ms.composite"})
+    for (const char* k : {"cold_first_frame_ms", "warm_ms", "frames_per_second",
+                          "samples_per_second", "cache_retraces", "stages_ms.traversal",
+                          "stages_ms.scan", "stages_ms.march", "stages_ms.composite"})
       keys.push_back(std::string("sizes.0.shellmarch.") + mode + "." + k);
   for (const char* img :
        {"shellmarch compacted", "shellmarch plain", "reference rounded to 8 bits"})
@@ -61,6 +78,23 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
                               "sizes.0.errors.VTK linear.converged.rmse", "goals.0.speedup",
                               "goals.0.met"}),
               std::vector<std::string>{});
+    // Paired rounds: two of them, shellmarch's equal-error run and VTK timed in each, and the
+    // goal decided on their median.
+    for (const auto& g : j["goals"]) {
+      if (g["equal_error_run"].is_null()) continue;
+      ASSERT_TRUE(g.contains("paired")) << g.dump();
+      EXPECT_FALSE(g.contains("paired_error")) << g.dump();
+      const auto& p = g["paired"];
+      ASSERT_EQ(p["rounds"].size(), 2u) << p.dump();
+      for (const auto& r : p["rounds"]) {
+        EXPECT_GT(r["shellmarch_ms"].get<double>(), 0.0);
+        EXPECT_GT(r["vtk_ms"].get<double>(), 0.0);
+      }
+      EXPECT_LE(p["ratio_min"].get<double>(), p["ratio_median"].get<double>());
+      EXPECT_LE(p["ratio_median"].get<double>(), p["ratio_max"].get<double>());
+      EXPECT_EQ(g["met"].get<bool>(), p["ratio_median"].get<double>() >= 5.0);
+    }
+    EXPECT_NE(log.find("paired rounds (2, shellmarch then VTK in each)"), std::string::npos) << log;
   }
 }
 

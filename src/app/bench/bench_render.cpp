@@ -3,12 +3,14 @@
 // Frames and samples per second per stage, compacted vs plain, on this machine's Vulkan device;
 // VTK's unstructured-grid ray cast mapper on the same mesh, view, size and transfer function in the
 // same run; both images' error against the CPU reference (docs/BENCHMARKS.md).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 
 #include "app/bench/bench_common.h"
+#include "app/bench/paired_rounds.h"
 #include "app/bench/reference_images.h"
 #include "app/bench/registry.h"
 #include "app/bench/render_measure.h"
@@ -16,6 +18,7 @@
 #include "app/cli_parsers.h"
 #include "app/rank_pipeline.h"
 #include "app/rank_share.h"
+#include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/timer.h"
@@ -34,6 +37,8 @@ struct RenderArgs {
   std::string coarser = "2,4";  // extra compacted runs at dt times these
   std::string exact = "1,4";    // element-exact runs at dt times these (dt bounds non-tet pieces)
   int runs = 3, vtkRuns = 3;
+  int pairRounds = 3;  // paired_rounds.h
+  std::string pairIntegrators = "preintegration";
   double refTolerance = 1e-4;
   std::string workDir = "out/bench", json, device, python = defaultPython();
   bool noVtk = false;
@@ -130,6 +135,7 @@ void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::G
     nlohmann::json mj = toJson(m);
     mj["dt_scale"] = 1.0;
     mj["dt"] = split.dt;
+    mj["stage_split"] = true;
     mj["label"] = "shellmarch compacted stage-split";
     j["shellmarch"]["compacted_coarser"].push_back(mj);
     images.renderers.emplace_back(mj["label"].get<std::string>(), std::move(m.image));
@@ -213,7 +219,8 @@ nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, const vk::Cont
 }
 
 nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                      const nlohmann::json& sizes) {
+                      const nlohmann::json& sizes, const std::vector<std::string>& integrators,
+                      const std::string& outDir) {
   render::RenderSettings s = settingsFor(a, sc, 1, 1);
   const auto& tf = s.transferFunction;
   nlohmann::json table = nlohmann::json::array();
@@ -222,8 +229,8 @@ nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& 
   job["mesh"] = std::filesystem::absolute(mesh).string();
   job["array"] = sc.setup["array"];
   job["runs"] = a.vtkRuns;
-  job["integrators"] = splitList(a.integrators);
-  job["out_dir"] = std::filesystem::absolute(a.workDir).string();
+  job["integrators"] = integrators;
+  job["out_dir"] = std::filesystem::absolute(outDir).string();
   job["tf"] = {{"lo", tf.lo},
                {"hi", tf.hi},
                {"table", table},
@@ -235,18 +242,27 @@ nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& 
   return job;
 }
 
+// VTK's script on `sizes` (entries of report["sizes"]) with `integrators`; tag names its job,
+// result and log files under workDir/outDir.
+PeerRun vtkRun(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+               const nlohmann::json& sizes, const std::vector<std::string>& integrators,
+               const std::string& outDir, const std::string& tag) {
+  std::filesystem::create_directories(outDir);
+  const std::string jobPath = joinPath(outDir, tag + "_job.json");
+  writeJsonFile(jobPath, vtkJob(a, sc, mesh, sizes, integrators, outDir));
+  return runPeer({a.python,
+                  "vtk_render.py",
+                  {"--job", jobPath},
+                  joinPath(outDir, tag + ".json"),
+                  joinPath(outDir, tag + ".log"),
+                  true});
+}
+
 nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
                       const nlohmann::json& sizes) {
   if (a.noVtk) return {{"available", false}, {"reason", "--no-vtk"}};
-  const std::string jobPath = joinPath(a.workDir, "vtk_render_job.json");
-  writeJsonFile(jobPath, vtkJob(a, sc, mesh, sizes));
   std::fprintf(stderr, "rendering with VTK (%d warm frames per size and integrator)\n", a.vtkRuns);
-  PeerRun run = runPeer({a.python,
-                         "vtk_render.py",
-                         {"--job", jobPath},
-                         joinPath(a.workDir, "vtk_render.json"),
-                         joinPath(a.workDir, "vtk_render.log"),
-                         true});
+  PeerRun run = vtkRun(a, sc, mesh, sizes, splitList(a.integrators), a.workDir, "vtk_render");
   if (!run.ok) {
     std::fprintf(stderr, "VTK peer not measured: %s\n", run.error.c_str());
     return {{"available", false}, {"reason", run.error}};
@@ -255,14 +271,81 @@ nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& 
   return run.result;
 }
 
+// The settings of shellmarch's run `label` at image size `size` (an entry of report["sizes"]).
+render::RenderSettings settingsOfRun(const RenderArgs& a, const Scenes& sc,
+                                     const nlohmann::json& size, const std::string& label) {
+  render::RenderSettings s =
+      settingsFor(a, sc, size["width"].get<int>(), size["height"].get<int>());
+  if (label == "shellmarch compacted") return s;
+  const nlohmann::json* run = nullptr;
+  for (const auto& m : size["shellmarch"]["compacted_coarser"])
+    if (m["label"].get<std::string>() == label) run = &m;
+  SM_CHECK_MSG(run, concat("no run '", label, "' at this size"));  // goals name runs of their size
+  s.dt = (*run)["dt"].get<double>();
+  if (run->value("integration", "") == "element-exact")
+    s.integration = render::Integration::ElementExact;
+  if (run->value("stage_split", false)) s.segmentCacheBytes = 0;
+  return s;
+}
+
+const nlohmann::json& sizeOfGoal(const nlohmann::json& report, const nlohmann::json& goal) {
+  const nlohmann::json* size = nullptr;
+  for (const auto& s : report["sizes"])
+    if (s["width"] == goal["width"] && s["height"] == goal["height"]) size = &s;
+  SM_CHECK(size);
+  return *size;
+}
+
+// Paired rounds (paired_rounds.h) of the compacted scene's equal-error runs against VTK.
+void pairWithVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+                 const vk::Context& ctx, const render::GpuScene& compact, nlohmann::json& report) {
+  if (a.pairRounds < 1 || !report["vtk"]["available"].get<bool>()) return;
+  const std::vector<std::string> integrators = splitList(a.pairIntegrators);
+  std::fprintf(stderr, "paired rounds: %d, shellmarch then VTK (%s) in each\n", a.pairRounds,
+               a.pairIntegrators.c_str());
+  int round = 0;
+  PairedRoundHooks hooks;
+  hooks.shellmarch = [&](const nlohmann::json& g) {
+    const nlohmann::json& size = sizeOfGoal(report, g);
+    RenderMeasurement m = measureRender(
+        ctx, compact, settingsOfRun(a, sc, size, g["equal_error_run"].get<std::string>()), a.runs);
+    return FrameTime{median(m.totalMs), median(m.cpuMs)};
+  };
+  hooks.vtk = [&](const std::vector<const nlohmann::json*>& goals) {
+    nlohmann::json sizes = nlohmann::json::array();
+    for (const nlohmann::json* g : goals) {
+      const nlohmann::json& s = sizeOfGoal(report, *g);
+      if (std::find(sizes.begin(), sizes.end(), s) == sizes.end()) sizes.push_back(s);
+    }
+    ++round;
+    PeerRun run = vtkRun(a, sc, mesh, sizes, integrators, joinPath(a.workDir, "paired"),
+                         concat("vtk_round", round));
+    if (!run.ok) throw Error("VTK: ", run.error);
+    std::vector<FrameTime> out;
+    for (const nlohmann::json* g : goals)
+      for (const auto& vs : run.result["sizes"])
+        if (vs["width"] == (*g)["width"] && vs["height"] == (*g)["height"])
+          for (const auto& v : vs["integrators"])
+            if (v["integrator"] == (*g)["vtk_integrator"])
+              out.push_back({v["warm_ms"].get<double>(), v["warm_cpu_ms"].get<double>()});
+    return out;
+  };
+  runPairedRounds(report, a.pairRounds, integrators, hooks, kRenderSpeedGoal);
+}
+
 void runRenderBench(const RenderArgs& a) {
   if (a.runs < 1 || a.vtkRuns < 1) throw Error("--runs and --vtk-runs: must be at least 1");
+  if (a.pairRounds < 0) throw Error("--pair-rounds: must not be negative");
   for (const std::string& r : splitList(a.references))
     if (r != "grid" && r != "converged")
       throw Error("--references: '", r, "' (use grid, converged)");
   for (const std::string& i : splitList(a.integrators))
     if (i != "linear" && i != "partial" && i != "preintegration" && i != "homogeneous")
       throw Error("--integrators: '", i, "' (use linear, partial, preintegration, homogeneous)");
+  const std::vector<std::string> measured = splitList(a.integrators);
+  for (const std::string& i : splitList(a.pairIntegrators))
+    if (std::find(measured.begin(), measured.end(), i) == measured.end())
+      throw Error("--pair-integrators: '", i, "' is not among --integrators (", a.integrators, ")");
   const auto sizes = parseSizes("--sizes", a.sizes);
   std::filesystem::create_directories(a.workDir);
   nlohmann::json report;
@@ -304,6 +387,7 @@ void runRenderBench(const RenderArgs& a) {
         measureSize(a, sc, ctx, compact, plain, ref, sizes[i].first, sizes[i].second, images[i]));
   report["vtk"] = runVtk(a, sc, mesh, report["sizes"]);
   addErrorsAndGoals(report, images);
+  pairWithVtk(a, sc, mesh, ctx, compact, report);
   report["load_average_after"] = machineJson()["load_average"];
   printRenderTables(report);
   if (!a.json.empty()) writeJsonFile(a.json, report);
@@ -336,6 +420,12 @@ void configureRenderBench(CLI::App& cmd) {
   cmd.add_option("--runs", a->runs, "Warm shellmarch frames per case (after one cold frame)")
       ->capture_default_str();
   cmd.add_option("--vtk-runs", a->vtkRuns, "Warm VTK frames per case")->capture_default_str();
+  cmd.add_option("--pair-rounds", a->pairRounds,
+                 "Rounds of shellmarch's equal-error run and VTK taking turns (0: none)")
+      ->capture_default_str();
+  cmd.add_option("--pair-integrators", a->pairIntegrators,
+                 "VTK integrators measured in the paired rounds (among --integrators)")
+      ->capture_default_str();
   cmd.add_option("--integrators", a->integrators,
                  "VTK ray integrators: linear, partial, preintegration, homogeneous")
       ->capture_default_str();

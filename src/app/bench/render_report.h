@@ -12,6 +12,10 @@
 
 namespace sm::app::bench {
 
+// The render benchmark's goal: shellmarch at least this many times VTK's speed at equal or lower
+// error (issue 3).
+inline constexpr double kRenderSpeedGoal = 5.0;
+
 // One image size's images: shellmarch's (by label) and the CPU references ("grid", "converged").
 struct RenderImages {
   std::vector<std::pair<std::string, scene::Image>> renderers;
