@@ -1,10 +1,13 @@
 // The compositor on in-process ranks (1 to 4 threads, one Vulkan context each, LocalCommunicator)
 // against the serial reference and the host model of the device interface. Every rank's context
 // runs the validation layer and must report nothing.
+#include <algorithm>
 #include <atomic>
+#include <random>
 
 #include <gtest/gtest.h>
 
+#include "compositor/list_statistics.h"
 #include "compositor/local_communicator.h"
 #include "compositor_cases.h"
 #include "vk/context.h"
@@ -97,6 +100,34 @@ TEST(CompositorErrors, FailureOnOneRankEndsAllRanksWithItsMessage) {
     EXPECT_STREQ(e.what(), "injected failure on rank 1");
   }
   EXPECT_EQ(completed, 0) << "no rank can finish a frame without rank 1";
+}
+
+// The list statistics over many workgroups (each sums 4096 counts), the last one partial, with the
+// longest list in it: every total must match the host's.
+TEST(ListStatistics, ManyWorkgroupsMatchTheHost) {
+  vk::Context ctx(computeOnly());
+  for (uint32_t pixels : {1u, 4095u, 4097u, 70001u}) {
+    std::mt19937 rng(pixels);
+    std::vector<uint32_t> counts(pixels);
+    for (uint32_t& c : counts) c = rng() % 3 == 0 ? 0u : rng() % 6;
+    counts[pixels - 1] = 77;  // in the last (partial) workgroup
+    if (pixels > 100) counts[pixels / 2] = 0;
+    vk::Buffer buf(ctx, uint64_t(pixels) * 4, vk::kStorageUsage, vk::MemoryUse::Device,
+                   "test: counts");
+    buf.upload(counts.data(), uint64_t(pixels) * 4);
+    ListStatistics stats(ctx);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { stats.record(cmd, buf.address(), pixels); });
+    ListTotals t = stats.read();
+    uint64_t fragments = 0, nonEmpty = 0;
+    for (uint32_t c : counts) {
+      fragments += c;
+      nonEmpty += c > 0 ? 1 : 0;
+    }
+    EXPECT_EQ(t.longest, *std::max_element(counts.begin(), counts.end())) << pixels;
+    EXPECT_EQ(t.nonEmptyPixels, nonEmpty) << pixels;
+    EXPECT_EQ(t.fragments, fragments) << pixels;
+  }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
 }
 
 }  // namespace
