@@ -2,10 +2,10 @@
 // Two-pass (exact) lists with one traversal. Count pass: trace and march each pixel's ray, keep the
 // first segCacheK segments with their fragments in the pixel's cache slots, write the segment
 // count (the list's capacity) and count the pixels with more segments than slots. Store pass,
-// after the prefix sum: store_cached.comp copies the cached segments and fragments to the pixel's
-// place in the lists; this pipeline's store pass, dispatched only when some pixel has more
-// segments than slots, traces those pixels' rays again (the same code on the same data gives the
-// same segments and fragments).
+// after the prefix sum: store_cached.comp copies the cached fragments (and segments, if kept) to
+// the pixel's place in the lists; this pipeline's store pass, dispatched only when some pixel has
+// more segments than slots, traces those pixels' rays again (the same code on the same data gives
+// the same segments and fragments).
 //
 // One pipeline for both passes (the pass is a push constant, not a specialisation constant) and one
 // call site of traceRay: the tracer is most of the shader, and each copy of it costs lavapipe
@@ -34,10 +34,12 @@ void main() {
   if (store && inImage) {
     nseg = SmUints(fp.segCounts).v[pixel];
     trace = nseg > fp.segCacheK;  // else store_cached.comp copied the pixel's cache
+  }
+  if (store && !trace) return;
+  if (store) {
     base = SmUints(fp.segOffsets).v[pixel];
     wr = dcBegin(fp.fragments, base, nseg);
   }
-  if (store && !trace) return;
   if (trace) {
     uint n = traceRay(pixelRay(fp, px), fp, pixel, store ? nseg : fp.maxSegments,
                       store ? RAY_TO_LIST : RAY_TO_CACHE, store && fp.segments != 0ul, base, wr,

@@ -116,8 +116,8 @@ struct RenderStats {
   uint cameraInside;  // rays whose first segment starts at the camera
   uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
   uint shellQueries;  // acceleration-structure queries (a probe that finds nothing is one more)
-  uint cacheRetraces; // cached two-pass lists: pixels with more segments than cache slots, traced
-                      // again in the store pass
+  uint cacheRetraces;  // cached two-pass lists: pixels with more segments than cache slots,
+                       // traced again in the store pass
 };
 
 #ifdef __cplusplus

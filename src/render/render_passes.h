@@ -57,9 +57,9 @@ class MarchPass {
   vk::ComputePipeline pipeline_;
 };
 
-// The cached lists' copy: each pixel whose segments all fit in the cache gets its cached segments
-// and fragments at its place in the lists (store_cached.comp). A small pipeline, so that the
-// tracer's runs only where rays must be traced again.
+// The cached lists' copy: each pixel whose segments all fit in the cache gets its cached fragments
+// (and segments, with keepSegments) at its place in the lists (store_cached.comp). A small
+// pipeline, so that the tracer's runs only where rays must be traced again.
 class StoreCachedPass {
  public:
   StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
