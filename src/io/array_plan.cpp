@@ -69,14 +69,17 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
 
 void addGroup(std::vector<FieldLoad>& loads, const std::string& source, const Group& g,
               int component, const std::string& field, std::optional<uint64_t> onlyStep) {
+  // Steps run 0 .. n-1 (g.steps is sorted), checked before anything is read or sized: a step
+  // number is a name's suffix, and "p@t99999999999" must not size a field with that many steps.
+  // With --time, the steps not loaded are checked too, so that a file missing one fails as a full
+  // read does.
+  for (uint64_t i = 0; i < g.steps.size(); ++i)
+    if (g.steps[i].first != i)
+      throw FileError(source, "point field '", field, "' has no values for time step ", i);
   if (!onlyStep) {
     for (const auto& [step, array] : g.steps) loads.push_back({array, component, field, step});
     return;
   }
-  // The steps not loaded are still checked, so that a file missing one fails as a full read does.
-  for (uint64_t i = 0; i < g.steps.size(); ++i)
-    if (g.steps[i].first != i)
-      throw FileError(source, "point field '", field, "' has no values for time step ", i);
   const size_t chosen = std::min<uint64_t>(*onlyStep, g.steps.size() - 1);
   loads.push_back({g.steps[chosen].second, component, field, 0});
 }

@@ -107,5 +107,22 @@ TEST(ArrayPlan, PlainAndSteppedNamesMayNotClash) {
   EXPECT_EQ(loads[1].step, 1u);
 }
 
+// A step number comes from a name: a gap, or one far beyond the number of arrays, is a missing
+// step, found before any field is sized (a fuzzer's "p@t<huge>" asked for exabytes).
+TEST(ArrayPlan, MissingOrHugeStepsAreErrorsBeforeAnythingIsSized) {
+  ReadOptions o;
+  for (const char* name : {"p@t2", "p@t18446744073709551615", "p@t1234567890123"}) {
+    try {
+      planFields("f.vtu", {{"p@t0", 1, false}, {name, 1, false}}, o);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find("has no values for time step 1"), std::string::npos)
+          << e.what();
+    }
+  }
+  o.step = 0;  // --time: the same check
+  EXPECT_THROW(planFields("f.vtu", {{"p@t0", 1, false}, {"p@t5", 1, false}}, o), FileError);
+}
+
 }  // namespace
 }  // namespace sm::io
