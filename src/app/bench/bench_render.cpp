@@ -242,8 +242,8 @@ nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& 
   return job;
 }
 
-// VTK's script on `sizes` (entries of report["sizes"]) with `integrators`; tag names its job,
-// result and log files under workDir/outDir.
+// VTK's script on `sizes` (entries of report["sizes"]) with `integrators`; `tag` names its job,
+// result and log files in outDir.
 PeerRun vtkRun(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
                const nlohmann::json& sizes, const std::vector<std::string>& integrators,
                const std::string& outDir, const std::string& tag) {
