@@ -106,8 +106,7 @@ uint64_t DeepCompositor::prepareLists() {
     scan_.record(cmd, offsets_.address(), pixels);
     hostReadBarrier(cmd);
   });
-  uint32_t total = 0;
-  scan_.total().download(&total, sizeof total);
+  const uint32_t total = scan_.downloadTotal("the pixels' list lengths");
   growFragments(total);
   return total;
 }
@@ -140,7 +139,7 @@ ListsView DeepCompositor::flatten(const ListsView& lists) {
                     flatCounts_.address(),
                     pixels,
                     lists.fixedK};
-    flatten_.dispatch(cmd, vk::groupsFor(pixels, 64), 1, 1, p);
+    flatten_.dispatchItems(cmd, pixels, 64, p);
   });
   return {&flatFragments_, &flatCounts_, nullptr, 1};
 }
@@ -156,7 +155,7 @@ void DeepCompositor::compositeLocal(const ListsView& lists, std::vector<glm::vec
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     previousWorkBarrier(cmd);
     listStats_.record(cmd, lists.counts->address(), pixels);
-    compositeLocal_.dispatch(cmd, vk::groupsFor(pixels, 64), 1, 1, push);
+    compositeLocal_.dispatchItems(cmd, pixels, 64, push);
     hostReadBarrier(cmd);
   });
   image.resize(pixels);

@@ -129,9 +129,7 @@ void DeepExchange::prepare(const ListsView& lists, CompositeStats& stats) {
     hostReadBarrier(cmd);
   });
   ListTotals totals = listStats_.read();
-  uint32_t total = 0;
-  scan_.total().download(&total, sizeof total);
-  sendTotal_ = total;
+  sendTotal_ = scan_.downloadTotal("this rank's list lengths");
   readBoundaries(sendBoundaries_, pixels_, sendTotal_, sendIndices_, sendBegin_);
   stats.fragments = totals.fragments;
   stats.nonEmptyPixels = totals.nonEmptyPixels;
@@ -157,11 +155,11 @@ void DeepExchange::compactAndEncode(const ListsView& lists) {
                     0,
                     pixels_,
                     lists.fixedK};
-    compact_.dispatch(cmd, vk::groupsFor(pixels_, 64), 1, 1, c);
+    compact_.dispatchItems(cmd, pixels_, 64, c);
     if (bits < 32) {
       DcEncodePush e{lists.counts->address(), segments_.address(), sendWords_.address(),
                      uint32_t(ranks_),        uint32_t(words),     bits};
-      encode_.dispatch(cmd, vk::groupsFor(words, 64), 1, 1, e);
+      encode_.dispatchItems(cmd, words, 64, e);
     }
     vk::computeToTransferBarrier(cmd);
     copyBuffer(cmd, sendFragments_, 0, sendFragmentStage_, 0, sendTotal_ * fragmentBytes_);
@@ -191,7 +189,7 @@ void DeepExchange::exchangeCounts(CompositeStats& stats) {
                      uint32_t(ranks_),
                      uint32_t(counts_.wordsPerSource),
                      bits};
-      decode_.dispatch(cmd, vk::groupsFor(received, 64), 1, 1, d);
+      decode_.dispatchItems(cmd, received, 64, d);
       vk::computeToTransferBarrier(cmd);
     } else {
       transferBarrier(cmd);
@@ -203,9 +201,7 @@ void DeepExchange::exchangeCounts(CompositeStats& stats) {
     copyBoundaries(cmd, recvOffsets_, received, recvBoundaries_, recvIndices_);
     hostReadBarrier(cmd);
   });
-  uint32_t total = 0;
-  scan_.total().download(&total, sizeof total);
-  recvTotal_ = total;
+  recvTotal_ = scan_.downloadTotal("the list lengths received");
   readBoundaries(recvBoundaries_, received, recvTotal_, recvIndices_, recvBegin_);
   stats.fragmentsComposited = recvTotal_;
 }
@@ -235,7 +231,7 @@ void DeepExchange::compositeOwned() {
                  ownedImage_.address(),
                  owned_,
                  uint32_t(ranks_)};
-    composite_.dispatch(cmd, vk::groupsFor(owned_, 64), 1, 1, p);
+    composite_.dispatchItems(cmd, owned_, 64, p);
     hostReadBarrier(cmd);
   });
 }

@@ -62,7 +62,7 @@ void ListWriter::dispatch(bool countOnly, uint32_t pixels) {
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     previousWorkBarrier(cmd);
     hostWriteBarrier(cmd);
-    pipeline_.dispatch(cmd, vk::groupsFor(pixels, 64), 1, 1, p);
+    pipeline_.dispatchItems(cmd, pixels, 64, p);
   });
 }
 

@@ -14,9 +14,9 @@ ListStatistics::ListStatistics(const vk::Context& ctx)
 void ListStatistics::record(VkCommandBuffer cmd, VkDeviceAddress counts, uint32_t pixels) const {
   vkCmdFillBuffer(cmd, result_.handle(), 0, VK_WHOLE_SIZE, 0);
   vk::transferToComputeBarrier(cmd);
-  constexpr uint64_t kPixelsPerGroup = 256 * 16;  // list_stats.comp: workgroup x pixels each
-  pipeline_.dispatch(cmd, vk::groupsFor(pixels, kPixelsPerGroup), 1, 1,
-                     DcStatsPush{counts, result_.address(), pixels});
+  constexpr uint32_t kPixelsPerGroup = 256 * 16;  // list_stats.comp: workgroup x pixels each
+  pipeline_.dispatchItems(cmd, pixels, kPixelsPerGroup,
+                          DcStatsPush{counts, result_.address(), pixels});
   hostReadBarrier(cmd);
 }
 

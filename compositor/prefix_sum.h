@@ -12,10 +12,11 @@ namespace sm::comp {
 class PrefixSum {
  public:
   explicit PrefixSum(const vk::Context& ctx);
-  // Records an in-place exclusive scan of n values at `values`; the total lands in total(), a
-  // one-uint device buffer valid after the commands complete. Buffers grow, never shrink.
+  // Records an in-place exclusive scan of n values at `values`. Buffers grow, never shrink.
   void record(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n);
-  const vk::Buffer& total() const { return total_; }
+  // The total of the last scan, once its commands have completed. Throws std::overflow_error,
+  // naming `what` was summed, when it exceeds 32 bits: the scanned offsets have wrapped.
+  uint32_t downloadTotal(const char* what) const;
 
  private:
   void recordLevel(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n, size_t level);

@@ -75,7 +75,7 @@ vec4 mergeInMemory(uint j) {
 }
 
 void main() {
-  uint j = gl_GlobalInvocationID.x;
+  uint j = smInvocationIndex(gl_WorkGroupSize.x);
   if (j >= pc.pixels) return;
   uint lists = 0u;
   for (uint s = 0u; s < pc.ranks; ++s)

@@ -9,7 +9,7 @@ layout(buffer_reference, scalar) buffer DcImage { vec4 v[]; };
 layout(push_constant, scalar) uniform Push { DcLocalPush pc; };
 
 void main() {
-  uint p = gl_GlobalInvocationID.x;
+  uint p = smInvocationIndex(gl_WorkGroupSize.x);
   if (p >= pc.pixels) return;
   uint n = DcUints(pc.counts).v[p];
   uint base = dcListBase(pc.offsets, pc.fixedK, p);

@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fragment_list.glsl"
 #include "exchange_types.h"
+#include "dispatch_grid.glsl"
 
 layout(buffer_reference, scalar) buffer DcUint3 { uint v[3]; };
 

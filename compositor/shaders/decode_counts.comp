@@ -8,7 +8,7 @@ layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { DcDecodePush pc; };
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
+  uint i = smInvocationIndex(gl_WorkGroupSize.x);
   if (i >= pc.perSource * pc.sources) return;
   uint s = i / pc.perSource, j = i % pc.perSource;
   uint perWord = 32u / pc.bits;

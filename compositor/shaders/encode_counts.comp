@@ -20,7 +20,7 @@ uint destinationOf(uint w) {
 }
 
 void main() {
-  uint w = gl_GlobalInvocationID.x;
+  uint w = smInvocationIndex(gl_WorkGroupSize.x);
   if (w >= pc.totalWords) return;
   uint d = destinationOf(w);
   uint firstPixel = DcUints(pc.segments).v[2u * d];

@@ -25,7 +25,7 @@ void main() {
   barrier();
   uint longest = 0u, nonEmpty = 0u, fragments = 0u;
   // Consecutive invocations read consecutive counts in each round.
-  uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x * kPixelsPerInvocation + gl_LocalInvocationIndex;
+  uint first = smGroupIndex() * gl_WorkGroupSize.x * kPixelsPerInvocation + gl_LocalInvocationIndex;
   for (uint i = 0u; i < kPixelsPerInvocation; ++i) {
     uint p = first + i * gl_WorkGroupSize.x;
     uint n = p < pc.pixels ? DcUints(pc.counts).v[p] : 0u;

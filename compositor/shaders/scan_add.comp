@@ -3,6 +3,9 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_GOOGLE_include_directive : require
+
+#include "dispatch_grid.glsl"
 
 layout(local_size_x = 256) in;
 layout(buffer_reference, scalar) buffer Uints { uint v[]; };
@@ -13,8 +16,10 @@ layout(push_constant, scalar) uniform Push {
 } pc;
 
 void main() {
-  uint add = Uints(pc.sums).v[gl_WorkGroupID.x];
-  uint base = gl_WorkGroupID.x * 1024u + gl_LocalInvocationIndex * 4u;
+  uint block = smGroupIndex();
+  if (block * 1024u >= pc.n) return;  // past the blocks, in the grid's last row
+  uint add = Uints(pc.sums).v[block];
+  uint base = block * 1024u + gl_LocalInvocationIndex * 4u;
   for (uint i = 0u; i < 4u; ++i)
     if (base + i < pc.n) Uints(pc.values).v[base + i] += add;
 }

@@ -4,27 +4,43 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 
+#include "dispatch_grid.glsl"
+
 layout(local_size_x = 256) in;
 layout(buffer_reference, scalar) buffer Uints { uint v[]; };
+layout(buffer_reference, scalar) buffer Uint64s { uint64_t v[]; };
 layout(push_constant, scalar) uniform Push {
   uint64_t values;  // n uints, scanned in place
-  uint64_t sums;    // one per block
+  uint64_t sums;    // one per block; the top level (one block): the 64-bit total
   uint n;
 } pc;
 
 shared uint subgroupTotals[256];
 
 void main() {
+  // The grid's last row may hold groups past the blocks; they would write past the block sums.
+  uint block = smGroupIndex();
+  if (block * 1024u >= pc.n) return;  // the whole workgroup: no barrier is left waiting
   Uints values = Uints(pc.values);
-  uint base = gl_WorkGroupID.x * 1024u + gl_LocalInvocationIndex * 4u;
+  uint base = block * 1024u + gl_LocalInvocationIndex * 4u;
   uint a[4];
   uint local = 0u;
   for (uint i = 0u; i < 4u; ++i) {
     a[i] = base + i < pc.n ? values.v[base + i] : 0u;
     local += a[i];
+  }
+  // The top level, one block, sums in 64 bits, so that lists needing more than 2^32 - 1
+  // fragments are refused (PrefixSum::downloadTotal) instead of wrapping. Below it a block sums
+  // 1024 counts or 1024 block totals: wrapping would take more than 4096 per pixel.
+  const bool top = gl_NumWorkGroups.x * gl_NumWorkGroups.y == 1u;
+  if (top && gl_LocalInvocationIndex == 0u) {
+    uint64_t sum = 0ul;
+    for (uint i = 0u; i < pc.n; ++i) sum += uint64_t(values.v[i]);
+    Uint64s(pc.sums).v[0] = sum;
   }
   uint excl = subgroupExclusiveAdd(local);
   if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) subgroupTotals[gl_SubgroupID] = excl + local;
@@ -36,7 +52,7 @@ void main() {
       subgroupTotals[s] = run;
       run += t;
     }
-    Uints(pc.sums).v[gl_WorkGroupID.x] = run;
+    if (!top) Uints(pc.sums).v[block] = run;
   }
   barrier();
   uint prefix = subgroupTotals[gl_SubgroupID] + excl;

@@ -9,7 +9,7 @@ layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { DcWritePush pc; };
 
 void main() {
-  uint p = gl_GlobalInvocationID.x;
+  uint p = smInvocationIndex(gl_WorkGroupSize.x);
   if (p >= pc.pixels) return;
   uint n = DcUints(pc.rawCounts).v[p];
   if (pc.countOnly != 0u) {

@@ -1,5 +1,8 @@
 #include "vk/pipeline.h"
 
+#include <cstdint>
+#include <string>
+
 #include "vk/vk_error.h"
 
 namespace sm::vk {
@@ -95,6 +98,22 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, uint32_t gx, uint32_t gy, ui
   if (pushBytes)
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
   if (gx && gy && gz) vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+GroupGrid groupGrid(uint64_t groups, uint32_t maxX, uint32_t maxY) {
+  if (groups == 0) return {};
+  const uint64_t y = maxX ? (groups + maxX - 1) / maxX : UINT64_MAX;
+  if (y > maxY)
+    throw VulkanError("a dispatch of " + std::to_string(groups) +
+                          " workgroups exceeds the device's " + std::to_string(maxX) + " x " +
+                          std::to_string(maxY) + " grid",
+                      VK_ERROR_UNKNOWN);
+  return {uint32_t((groups + y - 1) / y), uint32_t(y)};
+}
+
+GroupGrid ComputePipeline::gridFor(uint64_t items, uint32_t itemsPerGroup) const {
+  const uint32_t* limit = ctx_->properties().limits.maxComputeWorkGroupCount;
+  return groupGrid((items + itemsPerGroup - 1) / itemsPerGroup, limit[0], limit[1]);
 }
 
 TimestampQueries::TimestampQueries(const Context& ctx, uint32_t count) : ctx_(&ctx), count_(count) {

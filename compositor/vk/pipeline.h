@@ -26,6 +26,20 @@ struct PipelineDesc {
   bool accelerationStructure = false;  // set 0, binding 0
 };
 
+inline uint32_t groupsFor(uint64_t items, uint32_t groupSize) {
+  return uint32_t((items + groupSize - 1) / groupSize);
+}
+
+// Groups of a one-dimensional dispatch, in rows of at most maxX. Why: a device need take no more
+// than 65 535 groups in a dimension (lavapipe and most desktop drivers take no more), and a 2048²
+// image at 64 pixels per group is 65 536. y rows of x groups, with the fewest rows and then
+// the shortest rows that hold `groups`: fewer than y groups are left idle. Throws VulkanError when
+// even maxY rows do not hold them.
+struct GroupGrid {
+  uint32_t x = 0, y = 0;
+};
+GroupGrid groupGrid(uint64_t groups, uint32_t maxX, uint32_t maxY);
+
 class ComputePipeline {
  public:
   ComputePipeline() = default;
@@ -41,9 +55,20 @@ class ComputePipeline {
   void dispatch(VkCommandBuffer cmd, uint32_t gx, uint32_t gy, uint32_t gz, const T& push) const {
     dispatch(cmd, gx, gy, gz, &push, sizeof(T));
   }
+  // A one-dimensional dispatch of `items` work items, `itemsPerGroup` per group, laid out in rows
+  // (groupGrid): the shader numbers its groups with smGroupIndex (dispatch_grid.glsl) and
+  // returns past the last item.
+  template <typename T>
+  void dispatchItems(VkCommandBuffer cmd, uint64_t items, uint32_t itemsPerGroup,
+                     const T& push) const {
+    GroupGrid g = gridFor(items, itemsPerGroup);
+    dispatch(cmd, g.x, g.y, 1, &push, sizeof(T));
+  }
   bool valid() const { return bool(pipeline_); }
 
  private:
+  GroupGrid gridFor(uint64_t items, uint32_t itemsPerGroup) const;
+
   const Context* ctx_ = nullptr;
   DeviceHandle<VkShaderModule> module_;
   DeviceHandle<VkDescriptorSetLayout> setLayout_;
@@ -53,10 +78,6 @@ class ComputePipeline {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   uint32_t pushBytes_ = 0;
 };
-
-inline uint32_t groupsFor(uint64_t items, uint32_t groupSize) {
-  return uint32_t((items + groupSize - 1) / groupSize);
-}
 
 // GPU timestamps for per-stage timing.
 class TimestampQueries {

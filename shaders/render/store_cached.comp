@@ -7,13 +7,14 @@
 #extension GL_GOOGLE_include_directive : require
 #include "scene_access.glsl"
 #include "fragment_list.glsl"
+#include "dispatch_grid.glsl"
 
 layout(local_size_x = 64) in;
 layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  uint pixel = gl_GlobalInvocationID.x;
+  uint pixel = smInvocationIndex(gl_WorkGroupSize.x);
   if (pixel >= fp.width * fp.height) return;
   uint n = SmUints(fp.segCounts).v[pixel];
   if (n > fp.segCacheK) return;  // traced again by the tracer's store pass

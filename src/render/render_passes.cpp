@@ -73,7 +73,7 @@ StoreCachedPass::StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
                              sceneSpecialization(ctx, scene, c, PassOptions{}), false, scene)) {}
 
 void StoreCachedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  pipeline_.dispatch(cmd, vk::groupsFor(uint64_t(w) * uint64_t(h), 64), 1, 1, Push{params});
+  pipeline_.dispatchItems(cmd, uint64_t(w) * uint64_t(h), 64, Push{params});
 }
 
 FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,

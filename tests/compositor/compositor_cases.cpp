@@ -73,6 +73,20 @@ void checkLargeImage(Communicator* comm, const vk::Context& ctx) {
   if (rankOf(comm) == 0) expectImageNear(image, deepReference(w, o), kTolerance, describe(o, w));
 }
 
+void checkBeyondOneDispatchRow(Communicator* comm, const vk::Context& ctx) {
+  CompositorOptions o;
+  // 4 196 352 pixels: 65 568 groups of 64, past the 65 535 a dispatch row may hold. Sparse, so
+  // that the world and its reference stay small.
+  WorldSpec s = specFor(comm, 2048, 2049, 12);
+  s.emptyFraction = 0.9;
+  s.maxShort = s.maxLong = 2;
+  s.longFraction = 0.0;
+  World w = makeWorld(s);
+  RankRig rig(comm, ctx, s.width, s.height, o);
+  std::vector<glm::vec4> image = rig.run(w);
+  if (rankOf(comm) == 0) expectImageNear(image, deepReference(w, o), kTolerance, describe(o, w));
+}
+
 void checkFixedLists(Communicator* comm, const vk::Context& ctx) {
   for (ListMode mode : {ListMode::FixedDrop, ListMode::FixedMerge}) {
     for (uint32_t k : {1u, 3u}) {

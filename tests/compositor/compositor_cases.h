@@ -36,6 +36,9 @@ int ranksOf(Communicator* comm);
 void checkSmallImages(Communicator* comm, const vk::Context& ctx);
 // The same at 256x256 (mostly short lists, a few of up to 100).
 void checkLargeImage(Communicator* comm, const vk::Context& ctx);
+// A 2048x2049 image: one-dimensional passes over its pixels need more workgroups than one
+// dispatch row holds (vk::groupGrid).
+void checkBeyondOneDispatchRow(Communicator* comm, const vk::Context& ctx);
 // Fixed-K lists overflowing (K = 1 and 3): drop and merge against the host model of the device
 // interface, composited against the serial reference.
 void checkFixedLists(Communicator* comm, const vk::Context& ctx);

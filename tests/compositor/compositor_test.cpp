@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include "compositor/device_util.h"
 #include "compositor/list_statistics.h"
 #include "compositor/local_communicator.h"
+#include "compositor/prefix_sum.h"
 #include "compositor_cases.h"
 #include "vk/context.h"
 
@@ -62,6 +64,42 @@ TEST_P(CompositorInProcess, ListsBeyondRegistersMergeInMemory) {
 
 INSTANTIATE_TEST_SUITE_P(Ranks, CompositorInProcess, ::testing::Values(1, 2, 3, 4),
                          [](const auto& info) { return std::to_string(info.param) + "ranks"; });
+
+// One rank composites every pixel of the image (list statistics, compositing); two exchange and
+// decode counts for every pixel. Not run at every rank count: the image is 4 M pixels.
+TEST(CompositorLargeDispatch, ImagesBeyondOneRowOfWorkgroups) {
+  onLocalRanks(1, checkBeyondOneDispatchRow);
+  onLocalRanks(2, checkBeyondOneDispatchRow);
+}
+
+// Scans of n equal values: offsets and total exact up to 2^32 - 1; beyond, the total is refused
+// instead of wrapping (lists that large would be indexed by wrapped 32-bit offsets). One level
+// (4095 and 4097 values) and three (2 million values).
+TEST(PrefixSum, TotalsBeyond32BitsAreRefused) {
+  vk::Context ctx(computeOnly());
+  PrefixSum scan(ctx);
+  auto run = [&](uint32_t n, uint32_t value) {
+    std::vector<uint32_t> v(n, value);
+    vk::Buffer b = vk::makeBuffer<uint32_t>(ctx, v, "scanned values");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      scan.record(cmd, b.address(), n);
+      hostReadBarrier(cmd);
+    });
+    return b.download<uint32_t>();
+  };
+  for (auto [n, value] : {std::pair{4095u, 1u << 20}, std::pair{2000000u, 2147u}}) {
+    std::vector<uint32_t> offsets = run(n, value);
+    EXPECT_EQ(scan.downloadTotal("values"), uint64_t(n) * value) << n;
+    size_t wrong = 0;
+    for (uint32_t i = 0; i < n; ++i) wrong += offsets[i] != uint64_t(i) * value;
+    EXPECT_EQ(wrong, 0u) << n;
+  }
+  for (auto [n, value] : {std::pair{4097u, 1u << 20}, std::pair{2000000u, 2200u}}) {
+    run(n, value);
+    EXPECT_THROW(scan.downloadTotal("values"), std::overflow_error) << n;
+  }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
 
 // Devices whose memory the host cannot map: every transfer goes through staging copies.
 TEST(CompositorStaging, ExchangeWithoutMappedDeviceMemory) {

@@ -20,16 +20,16 @@ struct SlabCase {
   const char* name;
 };
 
-void expectSlab(const SlabCase& c) {
+void expectSlab(const SlabCase& c, int size = 48, double dt = 0.01) {
   RenderSettings s;
-  s.width = s.height = 48;
+  s.width = s.height = size;
   s.camera.eye = {1.9, 2.3, 2.7};
   s.camera.at = {0.5, 0.5, 0.5};
   s.camera.up = {0, 0, 1};
   s.camera.fovyDeg = 40;
   const double sigma = 1.3;
   s.transferFunction = test::constantTransferFunction({0.2f, 0.6f, 1.0f}, 1.0f, 1.0 / sigma);
-  s.dt = 0.01;
+  s.dt = dt;
   s.earlyTermination = 2.0;  // off: compare the whole integral
   auto r = test::renderOnGpu(c.mesh, "", s);
   EXPECT_EQ(r.validationErrors, 0u);
@@ -37,8 +37,13 @@ void expectSlab(const SlabCase& c) {
   EXPECT_EQ(r.frame.counters.entryWalks, 0u) << c.name;  // no ray here passes near a shell edge
   EXPECT_EQ(r.frame.counters.stepLimitHits, 0u) << c.name;
   auto cam = scene::cameraFrame(s.camera, s.width, s.height);
+  const double schemeTolerance = 1.5 * sigma * s.dt * 0.01 + 2e-5;
+  auto scheme = [&](double samples) { return 1.0 - std::pow(std::exp(-sigma * s.dt), samples); };
+  // A sample this close to a face of the box (float positions, distances and rounding of the
+  // walk) may land on either side of it.
+  auto onFace = [&](double t) { return std::abs(t - std::round(t / s.dt) * s.dt) <= 1e-5 * t; };
   double maxSchemeErr = 0, maxAnalyticErr = 0;
-  int covered = 0;
+  int covered = 0, movedSamples = 0;
   for (int y = 0; y < s.height; ++y) {
     for (int x = 0; x < s.width; ++x) {
       glm::dvec3 d = cam.pixelDirection(x, y);
@@ -50,18 +55,24 @@ void expectSlab(const SlabCase& c) {
         samples = std::ceil(t1 / s.dt) - std::ceil(t0 / s.dt);  // k with t0 <= k dt < t1
         ++covered;
       }
-      double scheme = 1.0 - std::pow(std::exp(-sigma * s.dt), samples);
       double analytic = 1.0 - std::exp(-sigma * L);
-      double a = r.image.at(x, y).a;
-      maxSchemeErr = std::max(maxSchemeErr, std::abs(a - scheme));
+      double a = r.image.at(x, y).a, err = std::abs(a - scheme(samples));
+      if (err > schemeTolerance && L > 0 && (onFace(t0) || onFace(t1)) &&
+          std::min(std::abs(a - scheme(samples - 1)), std::abs(a - scheme(samples + 1))) <=
+              schemeTolerance) {
+        ++movedSamples;
+      } else {
+        maxSchemeErr = std::max(maxSchemeErr, err);
+      }
       maxAnalyticErr = std::max(maxAnalyticErr, std::abs(a - analytic));
       // Colour is premultiplied by the same opacity.
       EXPECT_NEAR(r.image.at(x, y).b, a, 2e-5);
     }
   }
   EXPECT_GT(covered, s.width * s.height / 4);
-  // The sampling scheme exactly (float rounding can move one sample across a boundary).
-  EXPECT_LT(maxSchemeErr, 1.5 * sigma * s.dt * 0.01 + 2e-5) << c.name;
+  // The sampling scheme exactly, but for samples on a face of the box: rare (none at 48 x 48).
+  EXPECT_LT(maxSchemeErr, schemeTolerance) << c.name;
+  EXPECT_LE(movedSamples, covered / 10000) << c.name;
   // The continuous integral within the sampling error (at most one sample of sigma dt).
   EXPECT_LT(maxAnalyticErr, sigma * s.dt + 1e-4) << c.name;
   if (::testing::Test::HasFailure())
@@ -79,6 +90,12 @@ TEST(Slab, WedgeGrid) {
 }
 TEST(Slab, PyramidGrid) {
   expectSlab({test::pyramidGrid(2), "pyramid"});
+}
+// 2048 x 2048 pixels: the one-dimensional passes over them (storing cached fragments, list
+// statistics, compositing) take more workgroups of 64 than one dispatch row holds
+// (vk::groupGrid). Every pixel must still be the slab's.
+TEST(Slab, ImageBeyondOneDispatchRow) {
+  expectSlab({test::kuhnTetGrid(3), "tet-2048"}, 2048, 0.05);
 }
 
 // Element-exact integration has no sample grid: the slab's opacity is 1 - exp(-sigma L), up to

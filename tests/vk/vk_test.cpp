@@ -72,6 +72,55 @@ TEST(Vk, DeviceErrorListsWhatEachDeviceLacks) {
   }
 }
 
+// Rows of at most maxX groups, as few rows as hold them, rows as short as those rows allow.
+TEST(Vk, GroupGridSplitsDispatchesIntoRows) {
+  auto same = [](GroupGrid g, uint32_t x, uint32_t y) { return g.x == x && g.y == y; };
+  EXPECT_TRUE(same(groupGrid(0, 65535, 65535), 0, 0));
+  EXPECT_TRUE(same(groupGrid(1, 65535, 65535), 1, 1));
+  EXPECT_TRUE(same(groupGrid(65535, 65535, 65535), 65535, 1));
+  EXPECT_TRUE(same(groupGrid(65536, 65535, 65535), 32768, 2));  // a 2048² image, 64 per group
+  EXPECT_TRUE(same(groupGrid(10, 4, 65535), 4, 3));
+  for (uint64_t groups : {2ull, 7ull, 65537ull, 131071ull, 4194304ull, 4294836225ull}) {
+    GroupGrid g = groupGrid(groups, 65535, 65535);
+    const uint64_t cells = uint64_t(g.x) * g.y;
+    EXPECT_LE(g.x, 65535u) << groups;
+    EXPECT_GE(cells, groups) << groups;
+    EXPECT_LT(cells - groups, g.y) << groups;  // fewer idle groups than rows
+  }
+  EXPECT_THROW(groupGrid(4294836226ull, 65535, 65535), VulkanError);  // one more than 65535²
+  EXPECT_THROW(groupGrid(1, 0, 65535), VulkanError);
+}
+
+struct IdsPush {
+  uint64_t hits;
+  uint32_t n;
+};
+
+// More groups than one row holds: every item's invocation runs once, and the grid's idle groups
+// (fewer than its rows) see indices past the items.
+TEST(Vk, DispatchItemsBeyondOneRowReachesEveryItemOnce) {
+  ContextOptions o;
+  o.requireRayQuery = false;
+  Context ctx(o);
+  const uint32_t maxX = ctx.properties().limits.maxComputeWorkGroupCount[0];
+  const uint32_t n = 2 * maxX + 3;  // maxX + 2 groups of 2
+  std::vector<uint32_t> zeros(n + 1, 0u);
+  Buffer hits = makeBuffer<uint32_t>(ctx, zeros, "hits");
+  ComputePipeline p(ctx, {"linear_ids", test::spv::linear_ids(), {}, sizeof(IdsPush), false});
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    p.dispatchItems(cmd, n, 2, IdsPush{hits.address(), n});
+  });
+  std::vector<uint32_t> got = hits.download<uint32_t>();
+  size_t wrong = 0;
+  for (uint32_t i = 0; i < n; ++i) wrong += got[i] != 1u;
+  EXPECT_EQ(wrong, 0u);
+  const GroupGrid g =
+      groupGrid((n + 1) / 2, maxX, ctx.properties().limits.maxComputeWorkGroupCount[1]);
+  EXPECT_EQ(g.y, 2u);
+  EXPECT_EQ(got[n], uint64_t(g.x) * g.y * 2 - n);
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
+
 struct TracePush {
   uint64_t rays, hits;
   uint32_t n, flags;
