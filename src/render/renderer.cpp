@@ -8,6 +8,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/hash.h"
+#include "compositor/device_util.h"
 #include "vk/vk_error.h"
 
 namespace sm::render {
@@ -207,6 +208,9 @@ FrameResult Renderer::render(const RenderSettings& s) {
 
 double Renderer::timedDispatch(const std::function<void(VkCommandBuffer)>& record) {
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    // A fence wait makes earlier submissions' writes visible to the host only: the scan's offsets
+    // and the parameters rewritten since need this barrier to reach these shaders.
+    comp::previousWorkBarrier(cmd);
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
     record(cmd);
@@ -238,6 +242,7 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
   scanCounts(p, out, true);
   // Pass 2: store the segments at the scanned offsets, then march them into fragments.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    comp::previousWorkBarrier(cmd);  // the scan's offsets (timedDispatch)
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
     traversal_->recordStore(cmd, params_.address(), s.width, s.height);
