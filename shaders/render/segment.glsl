@@ -5,6 +5,7 @@
 
 #include "shell_entry.glsl"
 #include "fragment_list.glsl"
+#include "counters.glsl"
 
 struct SegmentStats {
   uint lost, grazing, walks, stepLimit, steps, samples, inside, boxExits, queries;
@@ -64,8 +65,8 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
   uint segs = subgroupAdd(segments), frags = subgroupAdd(fragments), queries = subgroupAdd(st.queries);
   if (subgroupElect()) {
     atomicAdd(s.s.shellQueries, queries);
-    atomicAdd(s.s.elementSteps, steps);
-    atomicAdd(s.s.samples, samples);
+    SM_ADD_WITH_CARRY(s.s.elementSteps, s.s.elementStepsHigh, steps);
+    SM_ADD_WITH_CARRY(s.s.samples, s.s.samplesHigh, samples);
     atomicAdd(s.s.segments, segs);
     atomicAdd(s.s.fragments, frags);
   }

@@ -111,13 +111,18 @@ struct RenderStats {
   uint segments;
   uint fragments;
   uint overflow;      // fragments dropped or merged by fixed-length lists
-  uint elementSteps;  // elements visited (wraps on huge frames; for rates only)
-  uint samples;       // samples taken (wraps on huge frames; for rates only)
+  uint elementSteps;  // elements visited: low 32 bits (elementStepCount)
+  uint samples;       // samples taken: low 32 bits (sampleCount)
   uint cameraInside;  // rays whose first segment starts at the camera
   uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
   uint shellQueries;  // acceleration-structure queries (a probe that finds nothing is one more)
   uint cacheRetraces;  // cached two-pass lists: pixels with more segments than cache slots,
                        // traced again in the store pass
+  // High words of elementSteps and samples, which pass 2^32 on large images (a 4096² demo frame
+  // at the default step takes 2.6 G samples): carried by the add that wraps the low word, so that
+  // no 64-bit atomics are needed.
+  uint elementStepsHigh;
+  uint samplesHigh;
 };
 
 #ifdef __cplusplus
@@ -126,7 +131,11 @@ static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FramePa
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(CachedSegment) == 40, "CachedSegment layout");
-static_assert(sizeof(RenderStats) == 52, "RenderStats layout");
+static_assert(sizeof(RenderStats) == 60, "RenderStats layout");
+inline uint64_t elementStepCount(const RenderStats& s) {
+  return uint64_t(s.elementStepsHigh) << 32 | s.elementSteps;
+}
+inline uint64_t sampleCount(const RenderStats& s) { return uint64_t(s.samplesHigh) << 32 | s.samples; }
 }  // namespace sm::gpu
 #endif
 

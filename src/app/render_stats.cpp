@@ -86,8 +86,8 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
   fr["entry_corrections"] = coll_.sum(uint64_t(f.counters.entryWalks));
   fr["step_limit_hits"] = coll_.sum(uint64_t(f.counters.stepLimitHits));
   fr["fragment_overflow"] = coll_.sum(uint64_t(f.counters.overflow));
-  fr["samples"] = coll_.sum(uint64_t(f.counters.samples));
-  fr["element_steps"] = coll_.sum(uint64_t(f.counters.elementSteps));
+  fr["samples"] = coll_.sum(gpu::sampleCount(f.counters));
+  fr["element_steps"] = coll_.sum(gpu::elementStepCount(f.counters));
   fr["camera_inside_rays"] = coll_.sum(uint64_t(f.counters.cameraInside));
   fr["box_exits"] = coll_.sum(uint64_t(f.counters.boxExits));
   fr["shell_queries"] = coll_.sum(uint64_t(f.counters.shellQueries));

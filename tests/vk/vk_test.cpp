@@ -121,6 +121,31 @@ TEST(Vk, DispatchItemsBeyondOneRowReachesEveryItemOnce) {
   EXPECT_EQ(ctx.validationErrors(), 0u);
 }
 
+struct CarryPush {
+  uint64_t counter;
+  uint32_t add;
+};
+
+// The renderer's 64-bit sample and step counters (counters.glsl): started just below 2^32 and
+// then past 2^33, 64 000 adds of 70 000 (4.48 G in all) must carry exactly.
+TEST(Vk, CountersCarryPast32Bits) {
+  ContextOptions o;
+  o.requireRayQuery = false;
+  Context ctx(o);
+  ComputePipeline p(ctx,
+                    {"carry_counter", test::spv::carry_counter(), {}, sizeof(CarryPush), false});
+  for (uint64_t start : {0xffff0000ull, 0x2fffffff0ull}) {
+    std::vector<uint32_t> init = {uint32_t(start), uint32_t(start >> 32)};
+    Buffer c = makeBuffer<uint32_t>(ctx, init, "counter");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      p.dispatch(cmd, 1000, 1, 1, CarryPush{c.address(), 70000u});
+    });
+    std::vector<uint32_t> got = c.download<uint32_t>();
+    EXPECT_EQ(uint64_t(got[1]) << 32 | got[0], start + 64000ull * 70000ull) << start;
+  }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
+
 struct TracePush {
   uint64_t rays, hits;
   uint32_t n, flags;

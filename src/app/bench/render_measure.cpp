@@ -45,8 +45,8 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
     m.marchMs.push_back(frame.timings.marchMs);
     m.compositeMs.push_back(frame.timings.compositeMs);
   }
-  m.samples = frame.counters.samples;
-  m.elementSteps = frame.counters.elementSteps;
+  m.samples = gpu::sampleCount(frame.counters);
+  m.elementSteps = gpu::elementStepCount(frame.counters);
   m.segments = frame.counters.segments;
   m.fragments = frame.counters.fragments;
   m.lostRays = frame.counters.lostRays;
