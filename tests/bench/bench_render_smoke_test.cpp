@@ -8,6 +8,25 @@
 namespace sm::test {
 namespace {
 
+// A name listed twice is an option error before anything is measured.
+TEST(BenchRender, RepeatedNamesAreOptionErrors) {
+  const std::string dir = outputDir("bench_render_options");
+  const std::string mesh = writeTinyMesh(dir);
+  for (const char* option : {"--integrators", "--pair-integrators", "--references"}) {
+    const char* value = std::string(option) == "--references" ? "grid,grid" : "linear,linear";
+    std::vector<std::string> args = {"bench", "render",     "--mesh",      mesh,      option,
+                                     value,   "--work-dir", dir + "/work", "--no-vtk"};
+    if (std::string(option) == "--pair-integrators")
+      args.insert(args.end(), {"--integrators", "linear"});
+    std::string log;
+    EXPECT_NE(runTool(args, dir, "options", log), 0) << log;
+    EXPECT_NE(log.find(std::string(option) + ": '" + std::string(value).substr(0, 4)),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("listed twice"), std::string::npos) << log;
+  }
+}
+
 TEST(BenchRender, TinyMeshWritesPromisedJson) {
   const std::string dir = outputDir("bench_render");
   const std::string mesh = writeTinyMesh(dir);

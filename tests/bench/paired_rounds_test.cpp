@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "common/error.h"
 
 namespace sm::app::bench {
@@ -31,7 +33,8 @@ struct Fake {
   std::vector<double> vtkMs;
   std::string calls;
   int vtkCalls = 0;
-  int failAt = -1;  // VTK fails in this round (0-based)
+  int failAt = -1;            // VTK fails in this round (0-based)
+  bool foreignError = false;  // ... with a std::runtime_error instead of an Error
   PairedRoundHooks hooks() {
     PairedRoundHooks h;
     h.shellmarch = [this](const nlohmann::json& g) {
@@ -40,6 +43,7 @@ struct Fake {
     };
     h.vtk = [this](const std::vector<const nlohmann::json*>& goals) {
       calls += "V ";
+      if (vtkCalls == failAt && foreignError) throw std::runtime_error("VTK's JSON is truncated");
       if (vtkCalls == failAt) throw Error("VTK crashed");
       double ms = vtkMs[size_t(vtkCalls++)];
       return std::vector<FrameTime>(goals.size(), FrameTime{ms, 2 * ms});
@@ -106,6 +110,16 @@ TEST(PairedRounds, VtkFailureKeepsTheRoundsDone) {
   EXPECT_DOUBLE_EQ(g["paired"]["ratio_median"].get<double>(), 6.0);
   EXPECT_NE(pairedSummary(g).find("paired rounds stopped: round 2: VTK crashed"),
             std::string::npos);
+}
+
+TEST(PairedRounds, AnyExceptionFromVtkKeepsTheRoundsDone) {
+  nlohmann::json r = threeGoals();
+  Fake f{{600.0, 600.0, 600.0}};
+  f.failAt = 1;
+  f.foreignError = true;
+  runPairedRounds(r, 3, {"preintegration"}, f.hooks(), 5.0);
+  EXPECT_EQ(r["goals"][0]["paired"]["rounds"].size(), 1u);
+  EXPECT_EQ(r["goals"][0]["paired_error"].get<std::string>(), "round 2: VTK's JSON is truncated");
 }
 
 TEST(PairedRounds, NoRoundsNoChange) {

@@ -1,5 +1,7 @@
 #include "app/bench/paired_rounds.h"
 
+#include <exception>
+
 #include <algorithm>
 
 #include "app/bench/bench_common.h"
@@ -55,7 +57,9 @@ void runPairedRounds(nlohmann::json& report, int rounds,
       theirs = hooks.vtk(view);
       if (theirs.size() != goals.size())
         throw Error("VTK gave ", theirs.size(), " frame times for ", goals.size(), " cases");
-    } catch (const Error& e) {
+    } catch (const std::exception& e) {
+      // Not only Error: the VTK hook also creates folders and reads JSON, and the rounds already
+      // done, and the report, must survive any of it.
       for (nlohmann::json* g : goals)
         (*g)["paired_error"] = concat("round ", round + 1, ": ", e.what());
       break;
