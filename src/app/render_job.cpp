@@ -144,7 +144,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
   shareOptions.streamSteps = true;
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
   const StepSource source(job.mesh, share);
-  const std::string field = resolveField(job, share.mesh);
+  const std::string field = resolveField(job, share.mesh, coll);
   const std::vector<uint64_t> steps =
       stepsToRender(job, uint64_t(coll.max(double(source.numSteps(field)))));
   const std::pair<double, double> range =

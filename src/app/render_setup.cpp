@@ -14,11 +14,21 @@ void checkImageSize(const RenderJob& job) {
                 " is not a usable image size (1 .. 16384 per side)");
 }
 
-std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m) {
+std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, Collectives& coll) {
   if (!job.field.empty()) return job.field;
-  if (m.fields.empty()) throw Error(job.mesh, ": has no point fields to render");
-  log::info("--field not given: rendering '", m.fields.front().name, "'");
-  return m.fields.front().name;
+  // Rank 0's first field, on every rank: a rank without clusters has read no fields, and ranks
+  // left to choose could each take a different one.
+  std::string name;
+  if (coll.rank() == 0) {
+    if (m.fields.empty()) throw Error(job.mesh, ": has no point fields to render");
+    name = m.fields.front().name;
+    log::info("--field not given: rendering '", name, "'");
+  }
+  uint64_t bytes = name.size();
+  coll.broadcast(&bytes, sizeof bytes);
+  name.resize(bytes);
+  coll.broadcast(name.data(), bytes);
+  return name;
 }
 
 std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,

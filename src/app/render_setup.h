@@ -19,8 +19,8 @@ namespace sm::app {
 // Throws naming --size when the image size is unusable.
 void checkImageSize(const RenderJob& job);
 
-// The job's field, or the mesh's first point field when none was asked for.
-std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m);
+// The job's field, or rank 0's first point field when none was asked for (collective).
+std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, Collectives& coll);
 
 // Range of `field` over `steps`, over all ranks; [0, 1] when no rank has a finite value.
 std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,

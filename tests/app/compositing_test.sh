@@ -61,15 +61,19 @@ PY
     # the one-rank image and the CPU reference's; single-fragment compositing does not. On 4 ranks
     # one rank holds no elements and still takes part.
     "$nested" nested.pvtu
-    nview=(--field vortex --size 80x64 --step 0.01 --unit-distance 0.3 --range 0,1 --colormap viridis
+    nview=(--size 80x64 --step 0.01 --unit-distance 0.3 --range 0,1 --colormap viridis
            --eye 2.2,-1.6,1.4 --at 0.5,0.5,0.5 --up 0,0,1 --fovy 35 --background 0,0,0 --early-termination 1)
-    "$sm" render nested.pvtu "${nview[@]}" --out n1.pfm
-    mpi 3 "$sm" render nested.pvtu "${nview[@]}" --stats --out n3.pfm | tee n3.log
-    mpi 4 "$sm" render nested.pvtu "${nview[@]}" --stats --out n4.pfm | tee n4.log
-    mpi 3 "$sm" render nested.pvtu "${nview[@]}" --composite single --out n3single.pfm
+    "$sm" render nested.pvtu --field vortex "${nview[@]}" --out n1.pfm
+    mpi 3 "$sm" render nested.pvtu --field vortex "${nview[@]}" --stats --out n3.pfm | tee n3.log
+    mpi 4 "$sm" render nested.pvtu --field vortex "${nview[@]}" --stats --out n4.pfm | tee n4.log
+    # Without --field every rank renders rank 0's first field, the empty one too (it read none).
+    "$sm" render nested.pvtu "${nview[@]}" --out n1first.pfm
+    mpi 4 "$sm" render nested.pvtu "${nview[@]}" --out n4first.pfm
+    mpi 3 "$sm" render nested.pvtu --field vortex "${nview[@]}" --composite single --out n3single.pfm
     grep -q "elements min 0 " n4.log || { echo "FAIL: no empty rank on 4 ranks"; exit 1; }
     "$diff" n1.pfm n3.pfm --max-abs 1e-3
     "$diff" n1.pfm n4.pfm --max-abs 1e-3
+    "$diff" n1first.pfm n4first.pfm --max-abs 1e-3
     "$diff" n1.pfm n3single.pfm --min-max-abs 0.02
     "$refcheck" nested.pvtu vortex n1.pfm 80 64 0.01 0.3 0 1 viridis 2.2 -1.6 1.4 0.5 0.5 0.5 0 0 1 35
     ;;

@@ -62,7 +62,7 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   Timer load;
   share_ = app::loadRankShare(job.mesh, job.share, coll);
   loadSeconds_ = load.seconds();
-  choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh), coll);
+  choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
   choices_.colormaps = colormapChoices(job.colormap);
   selectField(0);
   settings_ = app::makeSettings(job, share_, field_.range);
