@@ -37,6 +37,14 @@ DeepCompositor::DeepCompositor(const vk::Context& ctx, Communicator* comm, int w
     throw std::invalid_argument("compositor: more than 2^32 - 1 pixels");
   if (options_.mode != ListMode::TwoPass && options_.fixedK == 0)
     throw std::invalid_argument("compositor: fixed-length lists need K >= 1");
+  // Shaders index the slots (pixel * K) with 32-bit integers, which SPIR-V may read as signed.
+  if (options_.mode != ListMode::TwoPass &&
+      uint64_t(width) * uint64_t(height) * options_.fixedK > uint64_t(kMaxListIndex))
+    throw std::invalid_argument("compositor: fixed-length lists of " +
+                                std::to_string(options_.fixedK) + " slots over " +
+                                std::to_string(width) + "x" + std::to_string(height) +
+                                " pixels are more than " + std::to_string(kMaxListIndex) +
+                                " slots (--k): use a smaller --k or image, or two-pass lists");
   chooseCounterBits(0, options_.counterBits);  // rejects widths that are no encoding
   const uint64_t pixels = uint64_t(width) * height;
   const auto device = vk::MemoryUse::Device;

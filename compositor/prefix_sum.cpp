@@ -48,11 +48,11 @@ void PrefixSum::record(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n) 
 uint32_t PrefixSum::downloadTotal(const char* what) const {
   uint64_t total = 0;
   total_.download(&total, sizeof total);
-  if (total > UINT32_MAX)
-    throw std::overflow_error(std::string("compositor: ") + what + " add up to " +
-                              std::to_string(total) +
-                              ", more than 32-bit list offsets reach (4294967295); render fewer "
-                              "pixels per rank or use fixed-length lists (--lists merge)");
+  if (total > kMaxListIndex)
+    throw std::overflow_error(
+        std::string("compositor: ") + what + " add up to " + std::to_string(total) +
+        ", more than the lists' 32-bit indices reach (" + std::to_string(kMaxListIndex) +
+        "); render fewer pixels per rank or use fixed-length lists (--lists merge)");
   return uint32_t(total);
 }
 

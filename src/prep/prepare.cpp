@@ -1,5 +1,6 @@
 #include "prep/prepare.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -54,6 +55,26 @@ uint32_t PreparedRank::typesPresent() const {
   return bits;
 }
 
+void checkShaderIndexRange(const std::string& source, const SceneSizes& sizes, bool compact) {
+  constexpr uint64_t kWords = uint64_t(1) << 31;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint64_t record =
+        compact && t != gpu::SM_HEX ? gpu::SM_COMPACT_WORDS[t] : gpu::SM_PLAIN_WORDS[t];
+    const uint64_t words = std::max<uint64_t>(record, gpu::SM_NUM_FACES[t]);
+    if (sizes.elements[t] * words >= kWords)
+      throw Error(source, ": ", sizes.elements[t], " ", mesh::cellTypePluralName(mesh::CellType(t)),
+                  " on one rank; the shaders' 32-bit indices reach ", (kWords - 1) / words,
+                  " (use more ranks)");
+  }
+  if (sizes.vertices * 4 >= kWords)  // 16-byte records, read as 64-bit halves
+    throw Error(source, ": ", sizes.vertices, " vertices on one rank; the shaders' 32-bit indices",
+                " reach ", (kWords - 1) / 4, " (use more ranks)");
+  if (sizes.shellTriangles * 3 >= kWords)
+    throw Error(source, ": a shell of ", sizes.shellTriangles, " triangles on one rank; the",
+                " shaders' 32-bit indices reach ", (kWords - 1) / 3,
+                " (use more ranks, or clusters with less surface)");
+}
+
 PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                        const PrepOptions& options) {
   PrepResult result;
@@ -67,6 +88,10 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
           mesh.source, ": ", r.elementCount[t], " ", mesh::cellTypePluralName(mesh::CellType(t)),
           " on one rank; an element reference addresses at most 2^30 per type (use more ranks)");
   }
+  SceneSizes sizes;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) sizes.elements[t] = r.elementCount[t];
+  sizes.vertices = mesh.points.size();
+  checkShaderIndexRange(mesh.source, sizes, options.compact);
 
   Timer timer;
   r.vertexSource = orderAndRebase(mesh, frame, r.positions);
@@ -82,6 +107,8 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
 
   timer.reset();
   Shell shell = extractShell(elements, r.neighbors, r.positions);
+  sizes.shellTriangles = shell.refs.size();
+  checkShaderIndexRange(mesh.source, sizes, options.compact);
   r.shellAdjacency = shellAdjacency(shell.indices);
   r.shellIndices = std::move(shell.indices);
   r.shellRefs = std::move(shell.refs);

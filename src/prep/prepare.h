@@ -27,6 +27,17 @@ struct PrepResult {
 PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                        const PrepOptions& options);
 
+// The sizes of one rank's scene that its shaders index with 32-bit integers (SPIR-V may read them
+// as signed, so every word index stays below 2^31): records and neighbours of each element type
+// (per the encoding), 16-byte vertex records, and 3 indices per shell triangle. Throws naming
+// `source` and what is too large; prepareRank checks this as soon as each size is known.
+struct SceneSizes {
+  uint64_t elements[4] = {0, 0, 0, 0};  // per type, in SM_TET .. SM_HEX order
+  uint64_t vertices = 0;
+  uint64_t shellTriangles = 0;
+};
+void checkShaderIndexRange(const std::string& source, const SceneSizes& sizes, bool compact);
+
 // One step of one field in this rank's vertex order (what the GPU scalar buffer holds).
 std::vector<float> gatherScalars(const PreparedRank& rank, std::span<const float> meshValues);
 

@@ -72,9 +72,9 @@ TEST(CompositorLargeDispatch, ImagesBeyondOneRowOfWorkgroups) {
   onLocalRanks(2, checkBeyondOneDispatchRow);
 }
 
-// Scans of n equal values: offsets and total exact up to 2^32 - 1; beyond, the total is refused
-// instead of wrapping (lists that large would be indexed by wrapped 32-bit offsets). One level
-// (4095 and 4097 values) and three (2 million values).
+// Scans of n equal values: offsets and total exact up to kMaxListIndex (2^31 - 1); beyond, the
+// total is refused (past 2^32 it has wrapped). One level (2047 and 4097 values of 2^20: below the
+// limit, and past 2^32) and three (2 million values: below it, and between 2^31 and 2^32).
 TEST(PrefixSum, TotalsBeyond32BitsAreRefused) {
   vk::Context ctx(computeOnly());
   PrefixSum scan(ctx);
@@ -87,16 +87,32 @@ TEST(PrefixSum, TotalsBeyond32BitsAreRefused) {
     });
     return b.download<uint32_t>();
   };
-  for (auto [n, value] : {std::pair{4095u, 1u << 20}, std::pair{2000000u, 2147u}}) {
+  for (auto [n, value] : {std::pair{2047u, 1u << 20}, std::pair{2000000u, 1073u}}) {
     std::vector<uint32_t> offsets = run(n, value);
     EXPECT_EQ(scan.downloadTotal("values"), uint64_t(n) * value) << n;
     size_t wrong = 0;
     for (uint32_t i = 0; i < n; ++i) wrong += offsets[i] != uint64_t(i) * value;
     EXPECT_EQ(wrong, 0u) << n;
   }
-  for (auto [n, value] : {std::pair{4097u, 1u << 20}, std::pair{2000000u, 2200u}}) {
+  for (auto [n, value] : {std::pair{4097u, 1u << 20}, std::pair{2000000u, 1100u}}) {
     run(n, value);
     EXPECT_THROW(scan.downloadTotal("values"), std::overflow_error) << n;
+  }
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
+
+// Fixed-length lists whose slots pass kMaxListIndex are refused, naming --k, when the compositor
+// is made and before any buffer is.
+TEST(DeepCompositorLimits, FixedListSlotsBeyond31BitsAreRefused) {
+  vk::Context ctx(computeOnly());
+  CompositorOptions o;
+  o.mode = ListMode::FixedMerge;
+  o.fixedK = 8;
+  try {
+    DeepCompositor c(ctx, nullptr, 16384, 16385, o);  // 2 147 614 720 slots
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("(--k)"), std::string::npos) << e.what();
   }
   EXPECT_EQ(ctx.validationErrors(), 0u);
 }
