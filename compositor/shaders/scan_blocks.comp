@@ -33,9 +33,9 @@ void main() {
     a[i] = base + i < pc.n ? values.v[base + i] : 0u;
     local += a[i];
   }
-  // The top level, one block, sums in 64 bits, so that lists needing more than 2^32 - 1
-  // fragments are refused (PrefixSum::downloadTotal) instead of wrapping. Below it a block sums
-  // 1024 counts or 1024 block totals: wrapping would take more than 4096 per pixel.
+  // The top level, one block, also sums in 64 bits: PrefixSum::downloadTotal refuses lists too
+  // large for 32-bit indices by the true total, which the 32-bit one only gives mod 2^32. Below
+  // it a block sums 1024 counts or 1024 block totals: wrapping would take 4096 per pixel.
   const bool top = gl_NumWorkGroups.x * gl_NumWorkGroups.y == 1u;
   if (top && gl_LocalInvocationIndex == 0u) {
     uint64_t sum = 0ul;

@@ -66,7 +66,7 @@ void checkShaderIndexRange(const std::string& source, const SceneSizes& sizes, b
                   " on one rank; the shaders' 32-bit indices reach ", (kWords - 1) / words,
                   " (use more ranks)");
   }
-  if (sizes.vertices * 4 >= kWords)  // 16-byte records, read as 64-bit halves
+  if (sizes.vertices * 4 >= kWords)  // 16-byte records: 4 words each
     throw Error(source, ": ", sizes.vertices, " vertices on one rank; the shaders' 32-bit indices",
                 " reach ", (kWords - 1) / 4, " (use more ranks)");
   if (sizes.shellTriangles * 3 >= kWords)
