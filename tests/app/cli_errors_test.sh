@@ -27,6 +27,7 @@ expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
 expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png
 expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
 expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png
+expect "(--k)" "$sm" render ok.pvtu --lists merge --k 9 --size 16384x16384 --out a.png
 expect "--shading-params" "$sm" render ok.pvtu --shading-params 0.3,0.7,-1,20 --out a.png
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
