@@ -308,10 +308,18 @@ void Context::pickDevice(const ContextOptions& o) {
   if (const char* cap = std::getenv("SHELLMARCH_DEVICE_MEMORY_LIMIT"); cap && *cap)
     memoryLimit_ = std::min(memoryLimit_, parseByteCount("SHELLMARCH_DEVICE_MEMORY_LIMIT", cap));
   VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  const bool hasAs = hasExtension(physical_, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
+  if (hasAs) sub.pNext = &as;
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   p2.pNext = &sub;
   vkGetPhysicalDeviceProperties2(physical_, &p2);
   subgroupSize_ = sub.subgroupSize;
+  asPrimitiveLimit_ = hasAs ? as.maxPrimitiveCount : 0;
+  if (const char* cap = std::getenv("SHELLMARCH_AS_PRIMITIVE_LIMIT"); cap && *cap)
+    asPrimitiveLimit_ =
+        std::min(asPrimitiveLimit_, parseByteCount("SHELLMARCH_AS_PRIMITIVE_LIMIT", cap));
 }
 
 void Context::createDevice(const ContextOptions& o) {

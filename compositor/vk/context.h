@@ -71,6 +71,10 @@ class Context {
   bool hasRayQuery() const { return rayQuery_; }
   bool forceStaging() const { return forceStaging_; }
   uint32_t subgroupSize() const { return subgroupSize_; }
+  // The most primitives one bottom-level acceleration structure may hold (maxPrimitiveCount; 0
+  // without acceleration structures), or SHELLMARCH_AS_PRIMITIVE_LIMIT where smaller: the test
+  // hook, as no test can build a shell at the spec's minimum of 2^29 - 1.
+  uint64_t asPrimitiveLimit() const { return asPrimitiveLimit_; }
   double timestampPeriodNs() const { return props_.limits.timestampPeriod; }
 
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags want,
@@ -124,6 +128,7 @@ class Context {
   bool validation_ = false, debugUtils_ = false, float64_ = false, rayQuery_ = false;
   bool forceStaging_ = false;
   uint32_t subgroupSize_ = 1;
+  uint64_t asPrimitiveLimit_ = 0;
   uint64_t memoryLimit_ = UINT64_MAX;
   mutable std::atomic<uint64_t> memoryInUse_{0};
   std::atomic<uint64_t> errors_{0}, warnings_{0};

@@ -66,8 +66,11 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
         vk::makeBuffer<uint32_t>(ctx, r.neighbors[t], std::string(kNames[t]) + " neighbours");
   }
   if (shellTriangles_ > 0) {
-    if (shellTriangles_ > 0xFFFFFFFFull)
-      throw Error("shell of ", shellTriangles_, " triangles: use more ranks");
+    // A larger build is undefined behaviour on the device, not an error it reports.
+    const uint64_t limit = std::min<uint64_t>(ctx.asPrimitiveLimit(), 0xFFFFFFFFull);
+    if (shellTriangles_ > limit)
+      throw Error("a shell of ", shellTriangles_, " triangles on this rank; the device's",
+                  " acceleration structures hold at most ", limit, " (use more ranks)");
     if (shell == ShellGeometry::Triangles) {
       // The BLAS copies the triangles it is built from: the positions are input only.
       vk::Buffer positions =

@@ -6,10 +6,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include <glm/geometric.hpp>
 
+#include "common/error.h"
 #include "mesh/mesh_builder.h"
 #include "ray_harness.h"
 #include "render_harness.h"
@@ -375,6 +377,32 @@ TEST(HardCases, StepBoundTerminates) {
   auto g = test::renderOnGpu(m, smoothField(m, {0, 0, 0}, 1), s);
   EXPECT_GT(g.frame.counters.stepLimitHits, 0u);
   EXPECT_EQ(g.frame.counters.lostRays, 0u);
+}
+
+// A shell larger than the device's acceleration structures hold is refused before the build (on
+// the device it would be undefined behaviour). SHELLMARCH_AS_PRIMITIVE_LIMIT stands in for a device
+// at the spec's minimum, 2^29 - 1, which no test shell reaches; the grid's shell has 48 triangles.
+TEST(HardCases, ShellBeyondTheDevicesPrimitiveLimitIsRefused) {
+  RenderSettings s;
+  s.width = s.height = 16;
+  s.camera.eye = {2.5, 2.0, 1.5};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.transferFunction = test::constantTransferFunction({1.0f, 1.0f, 1.0f}, 1.0f, 1.0);
+  s.dt = 0.05;
+  const mesh::UnstructuredMesh grid = test::hexGrid(2);
+  setenv("SHELLMARCH_AS_PRIMITIVE_LIMIT", "47", 1);
+  try {
+    test::renderOnGpu(grid, "", s);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a shell of 48 triangles on this rank; the device's "
+                                         "acceleration structures hold at most 47"),
+              std::string::npos)
+        << e.what();
+  }
+  setenv("SHELLMARCH_AS_PRIMITIVE_LIMIT", "48", 1);
+  EXPECT_EQ(test::renderOnGpu(grid, "", s).validationErrors, 0u);
+  unsetenv("SHELLMARCH_AS_PRIMITIVE_LIMIT");
 }
 
 }  // namespace
