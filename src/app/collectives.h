@@ -28,6 +28,15 @@ class Collectives {
   virtual comp::Communicator* communicator() = 0;
 };
 
+// Rank 0's `text` on every rank (collective; the others' `text` is ignored).
+inline std::string broadcastString(Collectives& coll, std::string text) {
+  uint64_t bytes = text.size();
+  coll.broadcast(&bytes, sizeof bytes);
+  text.resize(bytes);
+  coll.broadcast(text.data(), bytes);
+  return text;
+}
+
 class SingleProcess final : public Collectives {
  public:
   int rank() const override { return 0; }

@@ -1,6 +1,7 @@
 #include "app/render_setup.h"
 
 #include <cmath>
+#include <utility>
 
 #include "common/error.h"
 #include "common/log.h"
@@ -24,11 +25,7 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, 
     name = m.fields.front().name;
     log::info("--field not given: rendering '", name, "'");
   }
-  uint64_t bytes = name.size();
-  coll.broadcast(&bytes, sizeof bytes);
-  name.resize(bytes);
-  coll.broadcast(name.data(), bytes);
-  return name;
+  return broadcastString(coll, std::move(name));
 }
 
 std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,

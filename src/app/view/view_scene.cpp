@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 
 #include "app/render_setup.h"
 #include "common/error.h"
@@ -19,10 +20,7 @@ std::vector<std::string> agreedFieldNames(const mesh::UnstructuredMesh& m, const
     for (const auto& f : m.fields)
       if (f.name != first) joined += '\n' + f.name;
   }
-  uint64_t bytes = joined.size();
-  coll.broadcast(&bytes, sizeof bytes);
-  joined.resize(bytes);
-  coll.broadcast(joined.data(), bytes);
+  joined = app::broadcastString(coll, std::move(joined));
   std::vector<std::string> names;
   for (size_t start = 0; start <= joined.size();) {
     size_t end = std::min(joined.find('\n', start), joined.size());
