@@ -43,21 +43,15 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   return {uint64_t(t)};
 }
 
-// The step a rank shows for `step`: a rank whose clusters carry fewer steps holds its last one.
-uint64_t heldStep(uint64_t step, uint64_t rankSteps) {
-  return std::min(step, std::max<uint64_t>(rankSteps, 1) - 1);
-}
-
 // Range of `field` over the steps to render, over all ranks, reading one step at a time;
 // [0, 1] when no rank has a finite value.
 std::pair<double, double> sequenceRange(const StepSource& source, const std::string& field,
                                         const std::vector<uint64_t>& steps, Collectives& coll) {
-  std::vector<uint64_t> held;
-  for (uint64_t s : steps) held.push_back(heldStep(s, source.numSteps(field)));
-  std::sort(held.begin(), held.end());
-  held.erase(std::unique(held.begin(), held.end()), held.end());
+  std::vector<uint64_t> distinct = steps;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
   mesh::Range r;
-  for (uint64_t s : held) r.extend(source.range(field, s));
+  for (uint64_t s : distinct) r.extend(source.range(field, s));
   double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
   if (!(lo <= hi)) return {0.0, 1.0};
   return {lo, hi};
@@ -92,14 +86,13 @@ void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
 
 // Renders the steps job.repeat times. Each frame's scalars were read and uploaded while the frame
 // before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
-// a frame whose step is the one shown already (a rank holding its last step) loads nothing.
+// a frame whose step is the one shown already (one step rendered repeatedly) loads nothing.
 void renderFrames(const Frames& f) {
   const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
-  const uint64_t rankSteps = f.source.numSteps(f.field);
-  auto held = [&](size_t i) { return heldStep(f.steps[i % perRun], rankSteps); };
+  auto stepOf = [&](size_t i) { return f.steps[i % perRun]; };
   // A prefetch has a whole frame to finish: one thread, leaving the cores to the frame.
   auto load = [&](size_t i, unsigned threads) -> render::ScalarPrefetcher::Load {
-    return [&source = f.source, &rank = f.rank, &field = f.field, step = held(i), threads] {
+    return [&source = f.source, &rank = f.rank, &field = f.field, step = stepOf(i), threads] {
       return source.scalars(rank, field, step, threads);
     };
   };
@@ -109,7 +102,7 @@ void renderFrames(const Frames& f) {
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
     prefetcher.loadNow(load(0, 0));
-    shown = held(0);
+    shown = stepOf(0);
     f.renderer.render(f.settings);
   }
   for (size_t i = 0; i < total; ++i) {
@@ -118,10 +111,10 @@ void renderFrames(const Frames& f) {
     render::ScalarSwitch scalars;
     if (prefetcher.pending())
       scalars = prefetcher.swap();
-    else if (shown != held(i))
+    else if (shown != stepOf(i))
       scalars = prefetcher.loadNow(load(i, 0));
-    shown = held(i);
-    if (f.job.prefetch && i + 1 < total && held(i + 1) != held(i))
+    shown = stepOf(i);
+    if (f.job.prefetch && i + 1 < total && stepOf(i + 1) != stepOf(i))
       prefetcher.prefetch(load(i + 1, 1));
     Timer renderTimer;
     render::FrameResult frame = f.renderer.render(f.settings);
@@ -145,8 +138,9 @@ void runRender(const RenderJob& job, Collectives& coll) {
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
   const StepSource source(job.mesh, share);
   const std::string field = resolveField(job, share.mesh, coll);
-  const std::vector<uint64_t> steps =
-      stepsToRender(job, uint64_t(coll.max(double(source.numSteps(field)))));
+  const std::vector<uint64_t> steps = stepsToRender(
+      job,
+      agreedStepCount(job.mesh, field, source.numSteps(field), share.mesh.numPoints() > 0, coll));
   const std::pair<double, double> range =
       job.range ? *job.range : sequenceRange(source, field, steps, coll);
   const double loadSeconds = total.seconds();  // with the range pass over the steps

@@ -38,6 +38,24 @@ std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std
   return {lo, hi};
 }
 
+uint64_t agreedStepCount(const std::string& path, const std::string& field, uint64_t mine,
+                         bool hasPoints, Collectives& coll) {
+  const double lo = coll.min(hasPoints ? double(mine) : INFINITY);
+  const double hi = coll.max(hasPoints ? double(mine) : -INFINITY);
+  if (!(lo <= hi)) return 0;
+  if (lo == hi) return uint64_t(hi);
+  auto firstRankWith = [&](double count) {
+    return int(coll.min(hasPoints && double(mine) == count ? double(coll.rank()) : INFINITY));
+  };
+  const int rankLo = firstRankWith(lo), rankHi = firstRankWith(hi);
+  auto steps = [&](double n) { return concat(uint64_t(n), n == 1 ? " time step" : " time steps"); };
+  const std::string fewer = lo == 0 ? concat("no point field '", field, "'")
+                                    : concat(steps(lo), " of field '", field, "'");
+  throw FileError(path, "the pieces of rank ", rankLo, " have ", fewer, ", those of rank ", rankHi,
+                  " ", steps(hi),
+                  " (the pieces of one file must agree, as when one rank reads them all)");
+}
+
 scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
   if (!job.eye) {
     if (job.at || job.up) throw Error("--at and --up need --eye (or use --view)");

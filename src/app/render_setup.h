@@ -26,6 +26,13 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, 
 std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
                                       const std::vector<uint64_t>& steps, Collectives& coll);
 
+// The number of time steps of `field` that every rank with points has (collective); 0 when none
+// has points. Ranks whose pieces disagree are refused, naming `path`, a rank of each count and the
+// counts, as one rank reading the same pieces refuses them (io::listFieldSteps): otherwise the
+// outcome would depend on how many ranks share the pieces.
+uint64_t agreedStepCount(const std::string& path, const std::string& field, uint64_t mine,
+                         bool hasPoints, Collectives& coll);
+
 // --eye/--at/--up/--fovy, or the --view preset framing the whole data set.
 scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole);
 

@@ -94,7 +94,10 @@ void ViewScene::selectField(int index) {
   fieldIndex_ = index;
   field_.name = choices_.fields[size_t(index)];
   const mesh::Field* f = share_.mesh.findField(field_.name);
-  field_.steps = uint64_t(std::max(coll_.max(double(f ? f->numSteps() : 0)), 1.0));
+  field_.steps =
+      std::max<uint64_t>(app::agreedStepCount(job_.mesh, field_.name, f ? f->numSteps() : 0,
+                                              share_.mesh.numPoints() > 0, coll_),
+                         1);
   if (index == 0 && job_.range) {
     field_.range = *job_.range;
   } else {
@@ -112,11 +115,8 @@ void ViewScene::applyState(ViewState& state) {
   if (state.field != fieldIndex_) selectField(state.field);
   state.step = wrap(state.step, field_.steps);
   if (state.step != step_) {
-    // A rank may hold fewer steps than another (or none): it shows its last one.
-    const mesh::Field* f = share_.mesh.findField(field_.name);
-    const uint64_t mine = f ? std::max<uint64_t>(f->numSteps(), 1) : 1;
-    gpu_->setScalars(app::fieldStep(share_.mesh, prepared_.rank, field_.name,
-                                    std::min<uint64_t>(uint64_t(state.step), mine - 1)));
+    gpu_->setScalars(
+        app::fieldStep(share_.mesh, prepared_.rank, field_.name, uint64_t(state.step)));
     step_ = state.step;
   }
   if (state.colormap != colormap_) {
