@@ -64,6 +64,10 @@ bool StatsReport::wanted() const {
 
 void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
                            const render::Renderer& renderer, comp::DeepCompositor& compositor) {
+  const uint64_t overflow = coll_.sum(uint64_t(f.counters.overflow));
+  overflow_ += overflow;
+  overflowFrames_ += overflow > 0;
+  frames_ += 1;
   if (!wanted()) return;  // per-pixel counts cost a download and a gather per frame
   PixelCountSummary seg = summarise(renderer.lastSegmentCounts());
   PixelCountSummary frag = summarise(renderer.lastFragmentCounts());
@@ -85,7 +89,7 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
   fr["grazing_skips"] = coll_.sum(uint64_t(f.counters.grazingSkips));
   fr["entry_corrections"] = coll_.sum(uint64_t(f.counters.entryWalks));
   fr["step_limit_hits"] = coll_.sum(uint64_t(f.counters.stepLimitHits));
-  fr["fragment_overflow"] = coll_.sum(uint64_t(f.counters.overflow));
+  fr["fragment_overflow"] = overflow;
   fr["samples"] = coll_.sum(gpu::sampleCount(f.counters));
   fr["element_steps"] = coll_.sum(gpu::elementStepCount(f.counters));
   fr["camera_inside_rays"] = coll_.sum(uint64_t(f.counters.cameraInside));
@@ -183,17 +187,12 @@ void StatsReport::finish(uint64_t validationErrors) {
   }
   // Fixed-length lists lose what does not fit (dropped or merged out of order): the image is
   // then approximate, which must be said whether or not --stats was asked for.
-  uint64_t overflow = 0, overflowFrames = 0;
-  for (const auto& fr : json_["frames"]) {
-    overflow += fr["fragment_overflow"].get<uint64_t>();
-    overflowFrames += fr["fragment_overflow"].get<uint64_t>() > 0;
-  }
-  json_["fragment_overflow"] = overflow;
-  if (coll_.rank() == 0 && overflow > 0)
+  json_["fragment_overflow"] = overflow_;
+  if (coll_.rank() == 0 && overflow_ > 0)
     log::warning(
-        "fixed-length fragment lists (--k ", job_.lists.fixedK, ") overflowed: ", overflow,
+        "fixed-length fragment lists (--k ", job_.lists.fixedK, ") overflowed: ", overflow_,
         " fragments ", job_.lists.mode == comp::ListMode::FixedMerge ? "merged" : "dropped", " in ",
-        overflowFrames, " of ", json_["frames"].size(),
+        overflowFrames_, " of ", frames_,
         " frame(s), so the image is approximate; use a larger --k, or --lists two-pass (exact)");
   if (coll_.rank() == 0 && !job_.statsJson.empty()) {
     std::string text = json_.dump(2) + "\n";

@@ -43,6 +43,8 @@ class StatsReport {
   const RenderJob& job_;
   Collectives& coll_;
   nlohmann::json json_;
+  // Counted with or without --stats: an overflow must be said either way.
+  uint64_t overflow_ = 0, overflowFrames_ = 0, frames_ = 0;
   bool wanted() const;
   void printSetup() const;
   void printFrame(const nlohmann::json& fr) const;

@@ -225,6 +225,10 @@ overflow)
   n=$(python3 -c "import json; print(json.load(open('$dir/fixed.json'))['fragment_overflow'])")
   [ "$n" -gt 0 ] || fail "fragment_overflow is $n in the JSON"
   grep -qE "overflow [1-9][0-9]*;" "$dir/fixed.log" || fail "--stats does not show the overflow"
+  # Without --stats the warning is still given: an approximate image must never be silent.
+  run quiet "$shellmarch" "${render_args[@]}" --lists drop --k 1 --out "$dir/q.png"
+  [ $status -eq 0 ] || fail "the render without --stats failed"
+  expect_in quiet "fixed-length fragment lists (--k 1) overflowed"
   run exact "$shellmarch" "${render_args[@]}" --stats --stats-json "$dir/exact.json" --out "$dir/b.png"
   [ $status -eq 0 ] || fail "the two-pass render failed"
   grep -q "overflowed" "$dir/exact.log" && fail "two-pass lists warned of overflow"
