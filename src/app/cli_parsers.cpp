@@ -10,6 +10,11 @@
 namespace sm::app {
 namespace {
 
+std::string expected(size_t count, char sep) {
+  return count == 1 ? std::string("a finite number")
+                    : concat(count, " finite numbers separated by '", sep, "'");
+}
+
 std::vector<double> numbers(const std::string& option, const std::string& value, char sep,
                             size_t count) {
   std::vector<double> out;
@@ -19,11 +24,10 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
     char* end = nullptr;
     double d = std::strtod(item.c_str(), &end);
     if (item.empty() || *end || !std::isfinite(d))
-      throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+      throw Error(option, ": '", value, "' is not ", expected(count, sep));
     out.push_back(d);
   }
-  if (out.size() != count)
-    throw Error(option, ": '", value, "' is not ", count, " numbers separated by '", sep, "'");
+  if (out.size() != count) throw Error(option, ": '", value, "' is not ", expected(count, sep));
   return out;
 }
 

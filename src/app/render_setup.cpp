@@ -83,6 +83,8 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.transferFunction.unitDistance =
       job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
   s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
+  // Checked here against the whole data set too, so that every rank refuses the step alike.
+  render::checkStep(s.dt, s.camera.eye, share.wholeBounds);
   s.earlyTermination = job.earlyTermination;
   s.integration = job.integration;
   s.shading = job.shading;

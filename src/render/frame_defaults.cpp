@@ -1,7 +1,11 @@
 #include "render/frame_defaults.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
+#include "common/error.h"
 #include "mesh/element_geometry.h"
 
 namespace sm::render {
@@ -19,6 +23,26 @@ ElementSizeSum elementSizeSum(const mesh::UnstructuredMesh& m) {
     }
   }
   return s;
+}
+
+double finestStep(const glm::dvec3& eye, const mesh::Bounds& b) {
+  if (b.empty) return 0.0;
+  double far = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y,
+                            (c & 4) ? b.hi.z : b.lo.z);
+    far = std::max(far, glm::length(corner - eye));
+  }
+  return far * 0x1p-24;
+}
+
+void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw Error("--step: the sample distance must be positive and finite, not ", dt);
+  const double finest = finestStep(eye, b);
+  if (dt < finest)
+    throw Error("--step: ", dt, " is finer than float distances along a ray resolve in this view ",
+                "(the data reaches ", finest * 0x1p24, " from the eye); use at least ", finest);
 }
 
 }  // namespace sm::render

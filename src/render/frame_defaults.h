@@ -24,4 +24,12 @@ inline double defaultUnitDistance(const mesh::Bounds& whole) {
   return whole.diagonal() / 8.0;
 }
 
+// Samples sit at t = k dt, computed in float: past 2^24 steps from the eye, consecutive sample
+// positions are no longer distinct (and past 2^32 the device's step index would wrap), so a step
+// finer than the farthest corner of `b` over 2^24 cannot be honoured. 0 for empty bounds.
+double finestStep(const glm::dvec3& eye, const mesh::Bounds& b);
+
+// Throws naming --step unless `dt` is finite, positive and at least finestStep(eye, b).
+void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b);
+
 }  // namespace sm::render

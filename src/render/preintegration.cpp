@@ -130,17 +130,26 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
   t.scalarBins = scalarBins;
   t.lengthBins = lengthBins;
   t.tauMax = tauMax;
-  // A constant range maps every value to the table's middle (scene::TransferFunction::lookup); any
-  // interval around it reproduces that.
-  t.lo = tf.hi > tf.lo ? tf.lo : tf.lo - 0.5;
-  t.hi = tf.hi > tf.lo ? tf.hi : tf.lo + 0.5;
+  // The device computes table coordinates from float(lo) and float(hi): the grid is built on those
+  // very values, or far from zero (101325 +- 1, say) the two would place the bins apart. A range
+  // that float cannot tell from a point (a constant field: every value maps to the table's middle,
+  // scene::TransferFunction::lookup) is widened around it: any interval reproduces a constant
+  // function, and one with distinct float ends keeps the device's division finite.
+  t.lo = double(float(tf.lo));
+  t.hi = double(float(tf.hi));
+  const bool point = !(t.hi > t.lo);
+  if (point) {
+    const double mid = t.lo, half = std::max(0.5, std::abs(mid) * 0x1p-16);
+    t.lo = double(float(mid - half));
+    t.hi = double(float(mid + half));
+  }
   const double range = t.hi - t.lo;
   auto sigma = [&](double s) { return tf.lookup(s).a * tf.opacityScale / tf.unitDistance; };
   for (const auto& e : tf.table) {
     t.sigma.push_back(float(double(e.a) * tf.opacityScale / tf.unitDistance));
     t.sigmaMax = std::max(t.sigmaMax, double(t.sigma.back()));
   }
-  if (!(tf.hi > tf.lo)) t.sigma.assign(2, float(sigma(tf.lo)));
+  if (point) t.sigma.assign(2, float(sigma(tf.lo)));
   // S over the range by Simpson's rule on each sub-interval (exact for the piecewise-linear sigma).
   const int nc = cumulativeBinsFor(tf);
   t.cumulative.assign(nc, 0.0f);

@@ -1,14 +1,17 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "common/check.h"
 #include "common/error.h"
 #include "common/hash.h"
 #include "compositor/device_util.h"
+#include "render/frame_defaults.h"
 #include "vk/vk_error.h"
 
 namespace sm::render {
@@ -20,6 +23,14 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 glm::vec3 toFloat(const glm::dvec3& v) {
   return glm::vec3(v);
+}
+
+// The table the device reads. A constant range maps every value to the table's middle
+// (scene::TransferFunction::lookup); the device gets that colour in every entry, so no rounding
+// of the value (float, far from zero) can move a lookup off it.
+std::vector<glm::vec4> deviceTable(const scene::TransferFunction& tf) {
+  if (tf.hi > tf.lo) return tf.table;
+  return std::vector<glm::vec4>(tf.table.size(), glm::vec4(tf.lookup(tf.lo)));
 }
 
 }  // namespace
@@ -78,10 +89,10 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   if (s.width != compositor_.width() || s.height != compositor_.height())
     throw Error("image size ", s.width, "x", s.height, " differs from the compositor's ",
                 compositor_.width(), "x", compositor_.height());
-  if (!(s.dt > 0.0)) throw Error("--step: the sample distance must be positive, not ", s.dt);
   const scene::TransferFunction& tf = s.transferFunction;
   if (tf.table.size() < 2) throw Error("transfer function has no table");
   scene::CameraFrame cam = scene::cameraFrame(s.camera, s.width, s.height);
+  if (!useRays_) checkStep(s.dt, cam.eye - scene_.origin(), scene_.rebasedBounds());
   gpu::FrameParams p{};
   p.scene = scene_.refs();
   p.transferFunction = transferFunction_.valid() ? transferFunction_.address() : 0;
@@ -111,8 +122,8 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   if (tf.hi > tf.lo) {
     p.tfLo = float(tf.lo);
     p.tfScale = float(1.0 / (tf.hi - tf.lo));
-  } else {  // constant range: every value maps to the middle of the table, as scene::lookup does
-    p.tfLo = float(tf.lo - 0.5);
+  } else {  // constant range: every entry of the device's table is the middle (deviceTable)
+    p.tfLo = float(tf.lo);
     p.tfScale = 1.0f;
   }
   p.tfEntries = uint32_t(tf.table.size());
@@ -130,7 +141,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.shadeShininess = float(sh.shininess);
   }
   p.maxElementSteps = s.maxElementSteps;
-  p.maxSegments = getenv("SM_MAXSEG") ? atoi(getenv("SM_MAXSEG")) : s.maxSegments;
+  p.maxSegments = s.maxSegments;
   comp::DeviceLists lists = compositor_.lists();
   p.segCounts = lists.capacities;
   p.segOffsets = lists.offsets;
@@ -159,8 +170,12 @@ void Renderer::writeParams(const gpu::FrameParams& p) {
 FrameResult Renderer::renderRays(const RenderSettings& settings,
                                  const std::vector<WorldRay>& rays) {
   std::vector<gpu::RayDesc> rebased(rays.size());
-  for (size_t i = 0; i < rays.size(); ++i)
+  for (size_t i = 0; i < rays.size(); ++i) {
     rebased[i] = {glm::vec3(rays[i].origin - scene_.origin()), glm::vec3(rays[i].direction)};
+    // Each ray measures t from its own origin, in units of its direction's length.
+    checkStep(settings.dt * glm::length(rays[i].direction), rays[i].origin - scene_.origin(),
+              scene_.rebasedBounds());
+  }
   if (!rays_.valid() || rays_.size() < rebased.size() * sizeof(gpu::RayDesc))
     rays_ = vk::Buffer(ctx_, rebased.size() * sizeof(gpu::RayDesc), vk::kStorageUsage,
                        vk::MemoryUse::Device, "rays");
@@ -176,7 +191,7 @@ FrameResult Renderer::renderRays(const RenderSettings& settings,
 
 FrameResult Renderer::render(const RenderSettings& s) {
   auto t0 = std::chrono::steady_clock::now();
-  const auto& table = s.transferFunction.table;
+  const std::vector<glm::vec4> table = deviceTable(s.transferFunction);
   if (!transferFunction_.valid() || transferFunction_.size() < table.size() * sizeof(glm::vec4))
     transferFunction_ = vk::Buffer(ctx_, table.size() * sizeof(glm::vec4), vk::kStorageUsage,
                                    vk::MemoryUse::Device, "transfer function");

@@ -22,6 +22,9 @@ expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
 expect "--field" "$sm" render ok.pvtu --field nope --out a.png
 expect "--out" "$sm" render ok.pvtu --out a.jpg
 expect "--step" "$sm" render ok.pvtu --step -1 --out a.png
+expect "--step" "$sm" render ok.pvtu --step inf --out a.png
+# Finer than float positions along the rays resolve (sample indices would wrap): refused, not hung.
+expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
 expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
 expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
 expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png

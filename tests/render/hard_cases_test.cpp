@@ -14,6 +14,7 @@
 #include "common/error.h"
 #include "mesh/mesh_builder.h"
 #include "ray_harness.h"
+#include "render/frame_defaults.h"
 #include "render_harness.h"
 #include "support/test_meshes.h"
 #include "test_meshes.h"
@@ -376,6 +377,35 @@ TEST(HardCases, StepBoundTerminates) {
   s.maxElementSteps = 3;
   auto g = test::renderOnGpu(m, smoothField(m, {0, 0, 0}, 1), s);
   EXPECT_GT(g.frame.counters.stepLimitHits, 0u);
+  EXPECT_EQ(g.frame.counters.lostRays, 0u);
+}
+
+// Samples sit at t = k dt in float, and the samples of one walk are not bounded otherwise: a step
+// finer than the farthest corner's distance over 2^24 would repeat positions and, past 2^32
+// steps, wrap the device's sample index and never end. It is refused, naming --step; the finest
+// allowed step renders.
+TEST(HardCases, StepFinerThanFloatResolvesIsRefused) {
+  mesh::Bounds b;
+  b.extend({1, 1, 1});
+  b.extend({2, 2, 2});
+  EXPECT_DOUBLE_EQ(finestStep({0, 0, 0}, b), std::sqrt(12.0) * 0x1p-24);
+  EXPECT_EQ(finestStep({0, 0, 0}, mesh::Bounds{}), 0.0);
+  auto m = ref::test::cubeMesh(Split::Tets5, 1);
+  auto f = smoothField(m, {0, 0, 0}, 1);
+  RenderSettings s = cubeView(8);
+  const double finest = finestStep(s.camera.eye, m.bounds());
+  for (double dt : {1e-9, 0.5 * finest, double(INFINITY)}) {
+    s.dt = dt;
+    try {
+      test::renderOnGpu(m, f, s);
+      ADD_FAILURE() << "dt " << dt << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--step"), std::string::npos) << e.what();
+    }
+  }
+  s.width = s.height = 2;      // the finest step: about 2^24 samples for each of 4 rays
+  s.dt = finest * (1 + 1e-9);  // the renderer measures from rebased positions: rounding apart
+  auto g = test::renderOnGpu(m, f, s);
   EXPECT_EQ(g.frame.counters.lostRays, 0u);
 }
 

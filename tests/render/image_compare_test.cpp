@@ -121,6 +121,31 @@ TEST(ImageVsReference, ElementExactBeyondTheTransferFunctionsRange) {
                                  ref::test::cubeMesh(split, 3), linear, s, tight);
 }
 
+// A constant field gives a constant range (LO == HI), which maps every value to the table's middle
+// (scene::TransferFunction::lookup), near zero or far from it. Float rounding of the value once
+// moved the device's lookups off the middle (at 1e7, to the table's end) and made the
+// pre-integrated coordinate 0/0 (the volume vanished); both modes must match the reference.
+TEST(ImageVsReference, ConstantFieldMapsToTheTablesMiddle) {
+  using Field = double (*)(const glm::dvec3&);
+  const std::pair<const char*, Field> fields[] = {
+      {"5", +[](const glm::dvec3&) { return 5.0; }},
+      {"101325", +[](const glm::dvec3&) { return 101325.0; }},
+      {"1e7", +[](const glm::dvec3&) { return 1e7; }}};
+  test::ImageCheck tight;
+  tight.maxRmse = 1e-4;
+  tight.maxAbs = 1e-3;
+  for (const auto& [name, field] : fields) {
+    auto m = ref::test::cubeMesh(Split::Hex, 2);
+    const double c = field({0, 0, 0});
+    auto s = linearFieldSettings(c, c);
+    s.transferFunction = scene::makeTransferFunction("cool-to-warm");  // distinct table ends
+    s.transferFunction.lo = s.transferFunction.hi = c;
+    compareWithReference(std::string("constant_") + name, m, ref::test::pointField(m, field), s);
+    s.integration = Integration::ElementExact;
+    expectExactMatchesContinuous(std::string("constant_exact_") + name, m, field, s, tight);
+  }
+}
+
 // A trilinear field is not linear along rays in hexahedra, wedges and pyramids: element-exact mode
 // takes it piecewise linear between points at most dt apart.
 double trilinear(const glm::dvec3& p) {

@@ -120,6 +120,31 @@ TEST(ViewerHeadless, HeadlessSurfaceWithoutADisplayMatchesRender) {
   expectMatchesRender(dir, mesh, j, shot);
 }
 
+// "Finer step" pressed without end stops at a hundredth of the starting step: frames stay
+// interactive, and the step never reaches what float positions along a ray cannot resolve.
+TEST(ViewerHeadless, FinerStepStopsAtAHundredthOfTheStart) {
+  const std::string dir = outputDir("ViewerHeadless.FinerStep");
+  const std::string mesh = generateTestMesh(dir), script = dir + "/finer.txt";
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    std::fputs("frame\n", f);
+    for (int i = 0; i < 40; ++i) std::fputs("key [\n", f);  // 1.25^40: about 7500 times finer
+    std::fputs("frame\nquit\n", f);
+    std::fclose(f);
+  }
+  auto run = [&](const std::string& extra, const char* name) {
+    CommandResult r =
+        runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " + quote(mesh) +
+                       " --field vortex --size 32x24 --headless" + extra + " --print-camera",
+                   dir, name);
+    expectCleanRun(r);
+    return lastJson(r.out)["step"].get<double>();
+  };
+  const double start = run(" --frames 1", "start");
+  const double finest = run(" --script " + quote(script), "finer");
+  EXPECT_NEAR(finest, start / 100, 1e-9 * start);
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

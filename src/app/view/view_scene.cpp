@@ -7,6 +7,7 @@
 #include "app/render_setup.h"
 #include "common/error.h"
 #include "common/timer.h"
+#include "render/frame_defaults.h"
 
 namespace sm::view {
 namespace {
@@ -66,6 +67,7 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   settings_ = app::makeSettings(job, share_, field_.range);
   colormap_ = 0;
   home_ = settings_.camera;
+  finestInteractiveStep_ = settings_.dt / 100.0;
   if (uint64_t(firstStep) >= field_.steps)
     throw Error("--time: field '", field_.name, "' has ", field_.steps, " time steps (0 .. ",
                 field_.steps - 1, "), not step ", firstStep);
@@ -130,8 +132,12 @@ void ViewScene::applyState(ViewState& state) {
     colormap_ = state.colormap;
   }
   settings_.transferFunction.opacityScale = state.opacityScale;
-  settings_.dt = state.dt;
   settings_.camera = state.camera();
+  // "Finer step" stops at a hundredth of the starting step, and zooming far out at the finest
+  // step that float positions along a ray resolve (render::checkStep).
+  state.dt = std::max({state.dt, finestInteractiveStep_,
+                       render::finestStep(settings_.camera.eye, share_.wholeBounds)});
+  settings_.dt = state.dt;
   if (!renderer_ || state.width != settings_.width || state.height != settings_.height) {
     renderer_.reset();
     compositor_.reset();

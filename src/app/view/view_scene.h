@@ -59,6 +59,8 @@ class ViewScene {
   app::PreparedShare prepared_;
   ViewChoices choices_;
   scene::Camera home_;
+  // "Finer step" stops here: a hundredth of the starting step keeps frames interactive.
+  double finestInteractiveStep_ = 0.0;
   double loadSeconds_ = 0, prepareSeconds_ = 0;
   std::unique_ptr<vk::Context> ctx_;
   std::unique_ptr<render::GpuScene> gpu_;
