@@ -20,6 +20,10 @@ layout(push_constant, scalar) uniform Push {
 } pc;
 
 shared uint subgroupTotals[256];
+shared uint subgroupMaxima[256];
+
+// A block's total over 1024 values cannot pass 32 bits while each value is below this.
+const uint kNoWrapBelow = 1u << 22;
 
 void main() {
   // The grid's last row may hold groups past the blocks; they would write past the block sums.
@@ -35,7 +39,8 @@ void main() {
   }
   // The top level, one block, also sums in 64 bits: PrefixSum::downloadTotal refuses lists too
   // large for 32-bit indices by the true total, which the 32-bit one only gives mod 2^32. Below
-  // it a block sums 1024 counts or 1024 block totals: wrapping would take 4096 per pixel.
+  // it, a block total that would wrap is saturated instead (see below), so the top's sum passes
+  // 2^32 - 1 too and is refused, never wrapped to a small total that undersizes the lists.
   const bool top = gl_NumWorkGroups.x * gl_NumWorkGroups.y == 1u;
   if (top && gl_LocalInvocationIndex == 0u) {
     uint64_t sum = 0ul;
@@ -43,14 +48,28 @@ void main() {
     Uint64s(pc.sums).v[0] = sum;
   }
   uint excl = subgroupExclusiveAdd(local);
-  if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) subgroupTotals[gl_SubgroupID] = excl + local;
+  uint largest = subgroupMax(max(max(a[0], a[1]), max(a[2], a[3])));
+  if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) {
+    subgroupTotals[gl_SubgroupID] = excl + local;
+    subgroupMaxima[gl_SubgroupID] = largest;
+  }
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
-    uint run = 0u;
+    uint run = 0u, blockMax = 0u;
     for (uint s = 0u; s < gl_NumSubgroups; ++s) {
       uint t = subgroupTotals[s];
       subgroupTotals[s] = run;
       run += t;
+      blockMax = max(blockMax, subgroupMaxima[s]);
+    }
+    if (!top && blockMax >= kNoWrapBelow) {
+      // Rare (a value of 4M or more: a pixel's count, or 1024 pixels' total): the block's total
+      // again in 64 bits. Below 2^32 every partial sum of the block is exact too; above, the
+      // total saturates and the offsets no longer matter, as the frame is refused.
+      uint64_t sum = 0ul;
+      uint end = min(block * 1024u + 1024u, pc.n);
+      for (uint i = block * 1024u; i < end; ++i) sum += uint64_t(values.v[i]);
+      run = sum > 0xFFFFFFFFul ? 0xFFFFFFFFu : uint(sum);
     }
     if (!top) Uints(pc.sums).v[block] = run;
   }

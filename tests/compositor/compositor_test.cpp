@@ -94,9 +94,32 @@ TEST(PrefixSum, TotalsBeyond32BitsAreRefused) {
     for (uint32_t i = 0; i < n; ++i) wrong += offsets[i] != uint64_t(i) * value;
     EXPECT_EQ(wrong, 0u) << n;
   }
-  for (auto [n, value] : {std::pair{4097u, 1u << 20}, std::pair{2000000u, 1100u}}) {
+  // The last: each 2^20 values of a level-2 block total exactly 2^32, which wrapped to 0 below the
+  // top level (and the total read 4M); block totals that would wrap saturate instead.
+  for (auto [n, value] : {std::pair{4097u, 1u << 20}, std::pair{2000000u, 1100u},
+                          std::pair{(1u << 20) + 1024u, 4096u}}) {
     run(n, value);
     EXPECT_THROW(scan.downloadTotal("values"), std::overflow_error) << n;
+  }
+  // A block holding one value of 4M or more (the 64-bit path) still scans exactly.
+  {
+    const uint32_t n = 3000;
+    std::vector<uint32_t> v(n, 1u);
+    v[5] = 3u << 30;
+    vk::Buffer b = vk::makeBuffer<uint32_t>(ctx, v, "scanned values");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      scan.record(cmd, b.address(), n);
+      hostReadBarrier(cmd);
+    });
+    const std::vector<uint32_t> offsets = b.download<uint32_t>();
+    uint64_t expect = 0;
+    size_t wrong = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      wrong += offsets[i] != expect;
+      expect += v[i];
+    }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_THROW(scan.downloadTotal("values"), std::overflow_error);  // 3 * 2^30 + 2999 > 2^31 - 1
   }
   EXPECT_EQ(ctx.validationErrors(), 0u);
 }
