@@ -50,15 +50,21 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
       avoid = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
       break;
     case MemoryUse::Readback:
-      want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+      want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT |
+             VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
       break;
   }
   uint32_t type;
   try {
     type = ctx.memoryType(req.memoryTypeBits, want, avoid);
   } catch (const VulkanError&) {
-    type = ctx.memoryType(req.memoryTypeBits,
-                          use == MemoryUse::Device ? 0 : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+    // Host buffers are read and written through a persistent mapping without flushes, so they
+    // must be coherent (a cached, non-coherent type, listed first on some mobile drivers, would
+    // leave them unmapped); the spec guarantees a visible, coherent type.
+    type = ctx.memoryType(req.memoryTypeBits, use == MemoryUse::Device
+                                                  ? 0
+                                                  : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   }
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
