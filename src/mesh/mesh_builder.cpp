@@ -37,9 +37,10 @@ VtkTypeInfo classify(int vtkType) {
     case 11:
       return VtkTypeInfo{Kind::Volume, CellType::Hex, 8, false, true};
     case 24:
+      return vol(CellType::Tet, 10, true);  // quadratic tet
     case 71:
     case 78:
-      return vol(CellType::Tet, 10, true);  // quadratic/Lagrange/Bezier tet
+      return vol(CellType::Tet, 4, true);  // Lagrange/Bezier tet of any order, order 1 included
     case 25:
       return vol(CellType::Hex, 20, true);
     case 29:
@@ -78,8 +79,8 @@ VtkTypeInfo classify(int vtkType) {
     case 36:
     case 69:
     case 70:
-    case 75:
     case 76:
+    case 77:
       return {Kind::Surface, CellType::Tet, 0, false, false};
     case 1:
     case 2:
@@ -88,7 +89,7 @@ VtkTypeInfo classify(int vtkType) {
     case 21:
     case 35:
     case 68:
-    case 77:
+    case 75:
       return {Kind::LineOrVertex, CellType::Tet, 0, false, false};
     case 42:
       return {Kind::Polyhedron, CellType::Tet, 0, false, false};
@@ -143,7 +144,7 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
   if (ids.size() < info.minIds)
     throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") has ", ids.size(),
                     " points, expected ", info.minIds);
-  if (info.higherOrder) ++mesh_.skipped.quadraticReduced;
+  if (info.higherOrder && ids.size() > numVerts(info.type)) ++mesh_.skipped.quadraticReduced;
   if (info.voxel) {
     const int64_t hex[8] = {ids[0], ids[1], ids[3], ids[2], ids[4], ids[5], ids[7], ids[6]};
     addCell(CellType::Hex, hex, fileCell, cluster);

@@ -54,6 +54,25 @@ TEST(MeshBuilder, ReducesQuadraticTetToCorners) {
   EXPECT_EQ(m.skipped.quadraticReduced, 1u);
 }
 
+// Lagrange and Bezier cells come in any order; order 1 has the corners only (nothing reduced).
+// Curves (68, 75) are lines, triangles and quadrilaterals (69, 70, 76, 77) surfaces.
+TEST(MeshBuilder, LagrangeAndBezierCellsOfEveryKind) {
+  MeshBuilder b("lagrange.vtu");
+  b.setPoints(wedgePoints());
+  const int64_t tet[4] = {0, 1, 2, 3}, line[2] = {0, 1}, quad[4] = {0, 1, 4, 3};
+  b.addVtkCell(71, tet, 0);
+  b.addVtkCell(78, tet, 1);
+  b.addVtkCell(75, line, 2);
+  b.addVtkCell(68, line, 3);
+  b.addVtkCell(77, quad, 4);
+  b.addVtkCell(70, quad, 5);
+  auto m = b.finish();
+  EXPECT_EQ(m.numCells(CellType::Tet), 2u);
+  EXPECT_EQ(m.skipped.quadraticReduced, 0u);
+  EXPECT_EQ(m.skipped.lineOrVertex, 2u);
+  EXPECT_EQ(m.skipped.surface, 2u);
+}
+
 TEST(MeshBuilder, ErrorsNameFileAndCell) {
   MeshBuilder b("bad.vtu");
   b.setPoints(wedgePoints());
