@@ -226,12 +226,25 @@ class UgridReader {
     if (!options_.loadFields) return;
     std::string dir = directoryOf(src_);
     std::vector<std::pair<ArrayInfo, std::string>> found;
+    const std::string prefix = stem_ + ".";
+    // Another grid whose stem extends this one ("wing.fine" beside "wing") owns the side files
+    // named after it: "wing.fine.mach.f32" is not this grid's field "fine.mach".
+    std::vector<std::string> otherPrefixes;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".ugrid") == 0) {
+        const std::string other = variantOf(name).second;
+        if (other != stem_ && other.rfind(prefix, 0) == 0) otherPrefixes.push_back(other + ".");
+      }
+    }
+    for (const auto& entry : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
       std::string name = entry.path().filename().string();
-      const std::string prefix = stem_ + ".";
       if (name.size() <= prefix.size() + 4 || name.rfind(prefix, 0) != 0 ||
           name.compare(name.size() - 4, 4, ".f32") != 0)
+        continue;
+      if (std::any_of(otherPrefixes.begin(), otherPrefixes.end(),
+                      [&](const std::string& p) { return name.rfind(p, 0) == 0; }))
         continue;
       std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - 4);
       size_t dot = middle.rfind('.');

@@ -193,6 +193,10 @@ TEST(UgridReader, FieldsFromSideFiles) {
   writeFloats(dir + "/wing.temp.0.f32", t0);
   writeFloats(dir + "/wing.temp.1.f32", t1);
   writeFloats(dir + "/other.pressure.f32", std::vector<float>(5));  // another grid's: ignored
+  // A grid whose stem extends this one's owns the side files named after it ("wing.fine.mach"
+  // is not a field "fine.mach" of "wing").
+  test::writeBytes(dir + "/wing.fine.b8.ugrid", encode(Grid{}, kVariants[0]));
+  writeFloats(dir + "/wing.fine.mach.f32", std::vector<float>(7));
   mesh::UnstructuredMesh m = readMesh(dir + "/wing.lb8.ugrid");
   ASSERT_EQ(m.fields.size(), 2u);
   const mesh::Field* fp = m.findField("pressure");
