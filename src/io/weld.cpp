@@ -45,6 +45,10 @@ Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
   const uint64_t tableSize = std::bit_ceil(std::max<uint64_t>(2 * total, 16));
   const uint64_t mask = tableSize - 1;
   std::vector<uint32_t> table(tableSize, kEmpty);
+  // The last piece that took each welded point: a piece takes a point once, so two coincident
+  // points of one piece (a crack, a baffle) stay two even where an earlier piece has the point.
+  std::vector<uint32_t> lastPiece;
+  lastPiece.reserve(total);
   for (uint32_t k = 0; k < pieces.size(); ++k) {
     const auto& pts = pieces[k].points;
     std::vector<uint32_t>& map = w.remap.emplace_back(pts.size());
@@ -58,10 +62,12 @@ Welding weldPoints(const std::vector<mesh::UnstructuredMesh>& pieces) {
           w.points.push_back(pts[i]);
           w.firstPiece.push_back(k);
           w.origin.push_back(pieceStart + static_cast<uint32_t>(i));
+          lastPiece.push_back(k);
           map[i] = e;
           break;
         }
-        if (w.firstPiece[e] != k && sameBits(w.points[e], pts[i])) {
+        if (lastPiece[e] != k && sameBits(w.points[e], pts[i])) {
+          lastPiece[e] = k;
           map[i] = e;
           break;
         }

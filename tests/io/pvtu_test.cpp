@@ -114,5 +114,19 @@ TEST(Weld, MergesAcrossPiecesOnlyAndOnlyBitwiseEqualPoints) {
   EXPECT_EQ(w.numPoints(), 5u);
 }
 
+// Two coincident points of a later piece (a crack or baffle) stay two where an earlier piece has
+// the point: the first joins it, the second does not (both joined it before, and a cell of the
+// later piece could end with a repeated vertex).
+TEST(Weld, APieceTakesAnEarlierPiecesPointOnce) {
+  mesh::UnstructuredMesh a, b, c;
+  a.points = {{0, 0, 0}, {1, 0, 0}};
+  b.points = {{0, 0, 0}, {0, 0, 0}, {2, 0, 0}};
+  c.points = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  mesh::UnstructuredMesh w = weldPieces("w", {a, b, c});
+  // a: 2 points; b: its first (0,0,0) joins a's, its second is new, (2,0,0) is new; c: its first
+  // two join the two existing copies, its third is new.
+  EXPECT_EQ(w.numPoints(), 5u);
+}
+
 }  // namespace
 }  // namespace sm::io
