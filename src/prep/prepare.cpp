@@ -102,7 +102,13 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   result.timings.vertexOrder = timer.seconds();
 
   timer.reset();
-  result.connectivity = computeConnectivity(elements, r.numVertices(), r.neighbors, mesh.source);
+  result.connectivity =
+      computeConnectivity(elements, r.numVertices(), r.neighbors, mesh.source, [&](uint32_t v) {
+        // The input's points are freed by now; float positions suffice here.
+        return frame.origin + glm::dvec3(r.positions[3 * uint64_t(v)],
+                                         r.positions[3 * uint64_t(v) + 1],
+                                         r.positions[3 * uint64_t(v) + 2]);
+      });
   result.timings.connectivity = timer.seconds();
 
   timer.reset();

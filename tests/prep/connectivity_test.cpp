@@ -70,6 +70,39 @@ TEST(Connectivity, FaceSharedByThreeElementsIsAnError) {
   }
 }
 
+// A duplicated cell would pair each of its faces with its twin's: both vanish from the shell (or,
+// beside a neighbour, a face looks shared by three). It is named as a duplicate, with a position.
+TEST(Connectivity, DuplicatedCellsAreAnError) {
+  for (bool withNeighbour : {false, true}) {
+    mesh::MeshBuilder b("dup.vtu");
+    b.setPoints({{0, 0, 0},
+                 {1, 0, 0},
+                 {0, 1, 0},
+                 {0, 0, 1},
+                 {0, 0, -1},
+                 {5, 5, 5},
+                 {6, 5, 5},
+                 {5, 6, 5},
+                 {5, 5, 6}});
+    const int64_t t0[4] = {0, 1, 2, 3}, again[4] = {1, 0, 3, 2}, below[4] = {0, 2, 1, 4},
+                  apart[4] = {5, 6, 7, 8};
+    b.addVtkCell(10, t0, 0);
+    b.addVtkCell(10, again, 1);  // the same vertices, listed otherwise (fixed to positive volume)
+    b.addVtkCell(10, apart, 2);
+    if (withNeighbour) b.addVtkCell(10, below, 3);
+    auto m = b.finish();
+    try {
+      prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{});
+      FAIL() << "expected an error";
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      EXPECT_NE(msg.find("dup.vtu: two tetrahedra have the same vertices"), std::string::npos)
+          << msg;
+      EXPECT_NE(msg.find("at (0, 0, 0)"), std::string::npos) << msg;
+    }
+  }
+}
+
 TEST(Connectivity, EmptyMeshPreparesToNothing) {
   mesh::UnstructuredMesh m;
   auto res = prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{});
