@@ -98,6 +98,8 @@ render::RenderSettings toRenderSettings(const api::RenderSettings& s, const Mesh
   r.dt = s.sampleDistance > 0 ? s.sampleDistance : render::defaultStep(frame.meanElementSize);
   if (!(r.dt > 0 && r.transferFunction.unitDistance > 0))
     throw Error("render: the mesh is flat (zero volume); give sampleDistance and unitDistance");
+  // Here, with the whole mesh's bounds, so that every rank refuses it alike (an agreed error).
+  render::checkStep(r.dt, r.camera.eye, frame.whole, "render: sampleDistance");
   r.earlyTermination = s.earlyTermination;
   return r;
 }

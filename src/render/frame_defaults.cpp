@@ -36,12 +36,13 @@ double finestStep(const glm::dvec3& eye, const mesh::Bounds& b) {
   return far * 0x1p-24;
 }
 
-void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b) {
+void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b, const char* option) {
   if (!(dt > 0.0) || !std::isfinite(dt))
-    throw Error("--step: the sample distance must be positive and finite, not ", dt);
+    throw Error(option, ": the sample distance must be positive and finite, not ", dt);
   const double finest = finestStep(eye, b);
   if (dt < finest)
-    throw Error("--step: ", dt, " is finer than float distances along a ray resolve in this view ",
+    throw Error(option, ": ", dt,
+                " is finer than float distances along a ray resolve in this view ",
                 "(the data reaches ", finest * 0x1p24, " from the eye); use at least ", finest);
 }
 

@@ -29,7 +29,8 @@ inline double defaultUnitDistance(const mesh::Bounds& whole) {
 // finer than the farthest corner of `b` over 2^24 cannot be honoured. 0 for empty bounds.
 double finestStep(const glm::dvec3& eye, const mesh::Bounds& b);
 
-// Throws naming --step unless `dt` is finite, positive and at least finestStep(eye, b).
-void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b);
+// Throws naming `option` unless `dt` is finite, positive and at least finestStep(eye, b).
+void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b,
+               const char* option = "--step");
 
 }  // namespace sm::render

@@ -146,6 +146,9 @@ TEST_F(InsituErrors, Settings) {
   expectSettingError([](auto& s) { s.colormap = "no-such-map"; },
                      "render: colormap: unknown colour map 'no-such-map' (built-in: ");
   expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); }, "must be finite");
+  // Finer than float positions along the rays resolve (the sample index could wrap).
+  expectSettingError([](auto& s) { s.sampleDistance = 1e-12; },
+                     "render: sampleDistance: 1e-12 is finer than float distances");
 }
 
 // After any of these errors the renderer renders as if they had not happened.
