@@ -212,6 +212,29 @@ void MeshBuilder::setClusterIds(std::span<const int64_t> perFileCell,
       clusters[i] = static_cast<int32_t>(id);
     }
   }
+  renumberSparseClusters(arrayName);
+}
+
+// Ids far above the cell count (a solver's rank numbers, say 2^31 - 1) would make everything that
+// keeps one entry per cluster (ranks' shares, cluster statistics, one piece per cluster) allocate
+// by the largest id: such ids are renumbered 0 .. k-1 in increasing order, which keeps the grouping
+// and the order; a file's small ids are kept as they are.
+void MeshBuilder::renumberSparseClusters(const std::string& arrayName) {
+  uint64_t cells = 0;
+  int32_t largest = -1;
+  for (const auto& c : mesh_.clusters) {
+    cells += c.size();
+    for (int32_t id : c) largest = std::max(largest, id);
+  }
+  if (uint64_t(largest) <= cells + 4096) return;
+  std::vector<int32_t> ids;
+  for (const auto& c : mesh_.clusters) ids.insert(ids.end(), c.begin(), c.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  for (auto& c : mesh_.clusters)
+    for (int32_t& id : c) id = int32_t(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
+  log::info(source_, ": cell array '", arrayName, "' numbers its ", ids.size(), " clusters up to ",
+            largest, "; renumbered 0 .. ", ids.size() - 1, " in the same order");
 }
 
 UnstructuredMesh MeshBuilder::finish() {

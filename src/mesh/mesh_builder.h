@@ -35,13 +35,16 @@ class MeshBuilder {
   // (they render transparent) and reported once per field as a warning.
   void addFieldStep(const std::string& name, uint64_t step, std::vector<float> values);
   void setTimeValues(std::vector<double> times) { mesh_.timeValues = std::move(times); }
-  // Replaces the cluster id of every cell added so far that came from file cell i with ids[i].
+  // Replaces the cluster id of every cell added so far that came from file cell i with ids[i];
+  // ids far above the cell count are renumbered densely, in order (renumberSparseClusters).
   void setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName);
 
   // Checks fields for missing steps, prints one warning per kind of fix or skip, returns the mesh.
   UnstructuredMesh finish();
 
  private:
+  void renumberSparseClusters(const std::string& arrayName);
+
   std::string source_;
   UnstructuredMesh mesh_;
   // File cell number of every kept cell, per type, so that cell arrays (clusters) can be applied.

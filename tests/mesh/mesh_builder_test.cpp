@@ -73,6 +73,25 @@ TEST(MeshBuilder, LagrangeAndBezierCellsOfEveryKind) {
   EXPECT_EQ(m.skipped.surface, 2u);
 }
 
+// Ids far above the cell count (2^31 - 1 once overflowed the cluster count, and each id sized
+// per-cluster arrays) are renumbered densely in order; small ids stay as the file gives them.
+TEST(MeshBuilder, SparseClusterIdsAreRenumberedInOrder) {
+  for (bool sparse : {false, true}) {
+    MeshBuilder b("clusters.vtu");
+    b.setPoints(wedgePoints());
+    const int64_t tet[4] = {0, 1, 2, 3};
+    for (int c = 0; c < 3; ++c) b.addVtkCell(10, tet, c);
+    const std::vector<int64_t> ids =
+        sparse ? std::vector<int64_t>{2147483647, 7, 100000000} : std::vector<int64_t>{9, 7, 30};
+    b.setClusterIds(ids, "cluster");
+    auto m = b.finish();
+    const std::vector<int32_t> want =
+        sparse ? std::vector<int32_t>{2, 0, 1} : std::vector<int32_t>{9, 7, 30};
+    EXPECT_EQ(m.clusters[typeIndex(CellType::Tet)], want);
+    EXPECT_EQ(m.numClusters(), sparse ? 3 : 31);
+  }
+}
+
 TEST(MeshBuilder, ErrorsNameFileAndCell) {
   MeshBuilder b("bad.vtu");
   b.setPoints(wedgePoints());
