@@ -278,7 +278,9 @@ void Context::pickDevice(const ContextOptions& o) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(devs[i], &p);
     auto missing = missingFor(devs[i], o);
-    report << "\n  [" << i << "] " << p.deviceName << " (" << typeName(p.deviceType) << ")";
+    // One line, devices separated by "; " (errors are one line: docs/RELIABILITY.md).
+    report << (i ? "; [" : ": [") << i << "] " << p.deviceName << " (" << typeName(p.deviceType)
+           << ")";
     if (missing.empty()) {
       report << ": usable";
     } else {

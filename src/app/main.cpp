@@ -35,13 +35,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const sm::Error& e) {
-    std::fprintf(stderr, "shellmarch: error: %s\n", e.what());
+    // Messages quote names from input files: one printable line on the terminal.
+    std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "shellmarch: error: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "shellmarch: error: %s\n", e.what());
+    std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());
     return 1;
   }
   return 0;

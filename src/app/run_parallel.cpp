@@ -20,7 +20,16 @@ void runParallel(const std::function<void(Collectives&)>& body) {
   CommCollectives coll(comm);
   // An error on any rank ends every rank with its message: never one rank waiting in a collective
   // for another that has given up.
-  comp::runOrAbort(comm, [&] { body(coll); });
+  comp::runOrAbort(comm, [&] {
+    try {
+      body(coll);
+    } catch (const comp::CommAborted&) {
+      throw;
+    } catch (const std::exception& e) {
+      // Messages quote names from input files: one printable line on the terminal.
+      throw std::runtime_error(printableLine(e.what()));
+    }
+  });
 }
 
 }  // namespace sm::app

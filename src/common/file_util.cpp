@@ -17,6 +17,10 @@ namespace sm {
 namespace fs = std::filesystem;
 
 std::vector<uint8_t> readFile(const std::string& path) {
+  // A folder or a device (/dev/zero) opens too, and reads without end.
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw FileError(path, "not a regular file");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw FileError(path, "cannot open: ", std::strerror(errno));
   std::vector<uint8_t> data;

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <mutex>
 
+#include "common/error.h"
+
 namespace sm::log {
 namespace {
 std::atomic<Level> g_level{Level::Warning};
@@ -12,7 +14,7 @@ std::string g_prefix;
 
 void emit(const char* kind, const std::string& line) {
   std::lock_guard lock(g_mutex);
-  std::fprintf(stderr, "%sshellmarch: %s%s\n", g_prefix.c_str(), kind, line.c_str());
+  std::fprintf(stderr, "%sshellmarch: %s%s\n", g_prefix.c_str(), kind, printableLine(line).c_str());
 }
 }  // namespace
 

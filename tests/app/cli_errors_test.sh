@@ -32,6 +32,21 @@ expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
 expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png
 expect "(--k)" "$sm" render ok.pvtu --lists merge --k 9 --size 16384x16384 --out a.png
 expect "--shading-params" "$sm" render ok.pvtu --shading-params 0.3,0.7,-1,20 --out a.png
+# A field name with a newline and a terminal escape: the message stays one printable line.
+cat > forged.vtu <<'VTU'
+<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
+<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
+<PointData><DataArray type="Float32" Name="f&#10;shellmarch: error: forged&#27;[31m" format="ascii">0 1 2 3</DataArray></PointData>
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>
+<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>
+</Piece></UnstructuredGrid></VTKFile>
+VTU
+expect 'f\x0ashellmarch: error: forged\x1b[31m' "$sm" render forged.vtu --field nosuch --out a.png
+mkdir -p cmap.json
+expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi
