@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -125,10 +126,30 @@ void renderFrames(const Frames& f) {
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
 }
 
+// Every file the job writes goes into a folder that exists: checked before any work, so that a
+// mistyped --stats-json does not fail after the image was written (a half-done run).
+void checkOutputs(const RenderJob& job) {
+  const std::pair<const char*, const std::string*> outputs[] = {{"--out", &job.out},
+                                                                {"--stats-json", &job.statsJson},
+                                                                {"--l2-heatmap", &job.l2Heatmap},
+                                                                {"--heatmaps", &job.heatmaps},
+                                                                {"--dump-counts", &job.dumpCounts}};
+  for (const auto& [option, path] : outputs) {
+    if (path->empty()) continue;
+    const std::string dir = directoryOf(*path);
+    std::error_code ec;
+    if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+      throw Error(option, ": '", *path, "' is in a folder that does not exist ('", dir, "')");
+  }
+  if (!job.l2Heatmap.empty() && fileExtension(job.l2Heatmap) != ".png")
+    throw Error("--l2-heatmap: '", job.l2Heatmap, "' must end in .png");
+}
+
 }  // namespace
 
 void runRender(const RenderJob& job, Collectives& coll) {
   checkImageSize(job);
+  checkOutputs(job);
   if (job.repeat < 1) throw Error("--repeat: must be at least 1, not ", job.repeat);
   if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
     throw Error("--out: '", job.out, "' must end in .png or .pfm");

@@ -45,6 +45,9 @@ cat > forged.vtu <<'VTU'
 </Piece></UnstructuredGrid></VTKFile>
 VTU
 expect 'f\x0ashellmarch: error: forged\x1b[31m' "$sm" render forged.vtu --field nosuch --out a.png
+# An output in a missing folder is refused before anything is written (the image included).
+expect "--stats-json" "$sm" render ok.pvtu --stats-json nodir/s.json --out a.png
+expect "--l2-heatmap" "$sm" render ok.pvtu --l2-heatmap h.jpg --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 printf 'not a mesh' > garbage.vtu
