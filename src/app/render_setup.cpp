@@ -83,6 +83,16 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.transferFunction.unitDistance =
       job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
   s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
+  // Without --step the step comes from the mesh: a fault then lies with the mesh or the view,
+  // not with an option the user did not give.
+  if (!job.step && !(s.dt > 0))
+    throw Error(job.mesh, ": every element has zero volume: there is no volume to render");
+  if (!job.step && s.dt < render::finestStep(s.camera.eye, share.wholeBounds))
+    throw Error("the default sample step ", s.dt, " (half the mean element size) is finer than ",
+                "float distances along a ray resolve this far from the data (up to ",
+                render::finestStep(s.camera.eye, share.wholeBounds) * 0x1p24,
+                "): move the eye closer or give --step of at least ",
+                render::finestStep(s.camera.eye, share.wholeBounds));
   // Checked here against the whole data set too, so that every rank refuses the step alike.
   render::checkStep(s.dt, s.camera.eye, share.wholeBounds);
   s.earlyTermination = job.earlyTermination;

@@ -48,6 +48,10 @@ expect 'f\x0ashellmarch: error: forged\x1b[31m' "$sm" render forged.vtu --field 
 # An output in a missing folder is refused before anything is written (the image included).
 expect "--stats-json" "$sm" render ok.pvtu --stats-json nodir/s.json --out a.png
 expect "--l2-heatmap" "$sm" render ok.pvtu --l2-heatmap h.jpg --out a.png
+# Without --step the step comes from the mesh: faults name the mesh or the view, not --step.
+sed -e 's/0 0 0 1 0 0 0 1 0 0 0 1/0 0 0 1 0 0 0 1 0 1 1 0/' -e 's/Name="f&#10;[^"]*"/Name="f"/' forged.vtu > flat.vtu
+expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.png
+expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 printf 'not a mesh' > garbage.vtu
