@@ -49,6 +49,9 @@ glm::dvec3 parseVec3(const std::string& option, const std::string& value) {
 std::pair<double, double> parseRange(const std::string& option, const std::string& value) {
   auto v = numbers(option, value, ',', 2);
   if (!(v[0] < v[1])) throw Error(option, ": '", value, "' needs LO < HI");
+  // Scalars are float on the device: a range beyond float maps every value to one end.
+  if (!(std::abs(v[0]) <= 3.4e38 && std::abs(v[1]) <= 3.4e38))
+    throw Error(option, ": '", value, "' must lie within float range (+-3.4e38)");
   return {v[0], v[1]};
 }
 

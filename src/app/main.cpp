@@ -32,8 +32,15 @@ int main(int argc, char** argv) {
   sm::app::registerView(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line like every other error (CLI11's own format adds a second line).
+    std::fprintf(stderr, "shellmarch: error: %s (see --help)\n",
+                 sm::printableLine(e.what()).c_str());
+    return e.get_exit_code();
   } catch (const sm::Error& e) {
     // Messages quote names from input files: one printable line on the terminal.
     std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());

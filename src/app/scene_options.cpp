@@ -1,6 +1,10 @@
 #include "app/scene_options.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include "app/cli_parsers.h"
+#include "common/error.h"
 
 namespace sm::app {
 
@@ -39,7 +43,7 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--early-termination", job.earlyTermination,
                   "Stop rays at this opacity (default 0.99)");
   cmd->add_option("--background", t["--background"], "Background colour r,g,b in [0,1]");
-  cmd->add_option("--clusters", job.share.metisClusters, "Split into N clusters with METIS");
+  cmd->add_option("--clusters", t["--clusters"], "Split into N clusters with METIS");
   cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids");
   cmd->add_option("--lists", t["--lists"],
                   "Fragment lists: two-pass (exact), drop or merge (fixed K)");
@@ -69,6 +73,22 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.shading = parseShading("--shading-params", get("--shading-params"));
   if (raw.shading) job.shading.enabled = true;
   job.compact = !raw.plain;
+  if (!get("--clusters").empty()) {
+    const std::string& c = get("--clusters");
+    char* end = nullptr;
+    const long long n = std::strtoll(c.c_str(), &end, 10);
+    if (c.empty() || *end || n < 1 || n > (1 << 30))
+      throw Error("--clusters: '", c, "' is not a cluster count (1 .. 2^30)");
+    job.share.metisClusters = int(n);
+  }
+  if (!(job.earlyTermination > 0 && job.earlyTermination <= 1))
+    throw Error("--early-termination: ", job.earlyTermination,
+                " is not an opacity in (0, 1] (1: rays stop only when opaque)");
+  if (!(job.opacityScale >= 0 && std::isfinite(job.opacityScale)))
+    throw Error("--opacity-scale: ", job.opacityScale, " must be finite and not negative");
+  for (int c = 0; c < 3; ++c)
+    if (!(job.background[c] >= 0 && job.background[c] <= 1))
+      throw Error("--background: each component must be in [0, 1], not ", job.background[c]);
 }
 
 }  // namespace sm::app

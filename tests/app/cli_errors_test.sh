@@ -45,6 +45,17 @@ cat > forged.vtu <<'VTU'
 </Piece></UnstructuredGrid></VTKFile>
 VTU
 expect 'f\x0ashellmarch: error: forged\x1b[31m' "$sm" render forged.vtu --field nosuch --out a.png
+expect "--early-termination" "$sm" render ok.pvtu --early-termination 2 --out a.png
+expect "--early-termination" "$sm" render ok.pvtu --early-termination 0 --out a.png
+expect "--background" "$sm" render ok.pvtu --background 2,-1,0 --out a.png
+expect "--clusters" "$sm" render ok.pvtu --clusters 0 --out a.png
+expect "--range" "$sm" render ok.pvtu --range -1e300,1e300 --out a.png
+expect "--opacity-scale" "$sm" render ok.pvtu --opacity-scale nan --out a.png
+# The option parser's own errors are one line too (with the exit status it gives).
+expect "--fovy" "$sm" render ok.pvtu --fovy abc --out a.png
+# bench render makes render's checks instead of measuring a bad value.
+expect "--opacity-scale" "$sm" bench render --mesh ok.pvtu --no-vtk --opacity-scale nan --work-dir bw
+expect "--step" "$sm" bench render --mesh ok.pvtu --no-vtk --step 0 --work-dir bw
 # An output in a missing folder is refused before anything is written (the image included).
 expect "--stats-json" "$sm" render ok.pvtu --stats-json nodir/s.json --out a.png
 expect "--l2-heatmap" "$sm" render ok.pvtu --l2-heatmap h.jpg --out a.png

@@ -4,6 +4,7 @@
 // VTK's unstructured-grid ray cast mapper on the same mesh, view, size and transfer function in the
 // same run; both images' error against the CPU reference (docs/BENCHMARKS.md).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -32,6 +33,7 @@ struct RenderArgs {
   std::string mesh;  // "" = the demo capsule (ci/demo.sh's options), generated under workDir
   std::string field = "vortex", colormap = "cool-to-warm", view = "iso";
   double fovy = 30, opacityScale = 1, earlyTermination = 0.99, step = 0;  // step 0: default
+  std::string stepText;  // --step as given (parsed like render's)
   std::string sizes = "512,1024", references = "grid,converged",
               integrators = "preintegration,linear";
   std::string coarser = "2,4";  // extra compacted runs at dt times these
@@ -343,7 +345,16 @@ std::vector<std::string> namesOnce(const char* option, const std::string& list) 
   return names;
 }
 
-void runRenderBench(const RenderArgs& a) {
+void runRenderBench(RenderArgs& a) {
+  // The checks `render` makes: a bad value would otherwise be measured (a NaN image scored as
+  // perfect) or silently replaced by a default.
+  if (!a.stepText.empty()) a.step = parsePositive("--step", a.stepText);
+  if (!(a.opacityScale >= 0 && std::isfinite(a.opacityScale)))
+    throw Error("--opacity-scale: ", a.opacityScale, " must be finite and not negative");
+  if (!(a.earlyTermination > 0 && a.earlyTermination <= 1))
+    throw Error("--early-termination: ", a.earlyTermination, " is not an opacity in (0, 1]");
+  if (!(a.fovy > 0 && a.fovy < 180))
+    throw Error("--fovy: ", a.fovy, " must be in (0, 180) degrees");
   if (a.runs < 1 || a.vtkRuns < 1) throw Error("--runs and --vtk-runs: must be at least 1");
   if (a.pairRounds < 0) throw Error("--pair-rounds: must not be negative");
   for (const std::string& r : namesOnce("--references", a.references))
@@ -415,7 +426,7 @@ void configureRenderBench(CLI::App& cmd) {
   cmd.add_option("--fovy", a->fovy, "Vertical field of view, degrees")->capture_default_str();
   cmd.add_option("--opacity-scale", a->opacityScale, "Multiplies the opacity map")
       ->capture_default_str();
-  cmd.add_option("--step", a->step, "Sample distance (default: half the mean element size)");
+  cmd.add_option("--step", a->stepText, "Sample distance (default: half the mean element size)");
   cmd.add_option("--early-termination", a->earlyTermination, "shellmarch's early ray termination")
       ->capture_default_str();
   cmd.add_option("--sizes", a->sizes, "Image sizes: N (square) or WxH, comma separated")
