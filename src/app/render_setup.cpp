@@ -87,12 +87,11 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   // not with an option the user did not give.
   if (!job.step && !(s.dt > 0))
     throw Error(job.mesh, ": every element has zero volume: there is no volume to render");
-  if (!job.step && s.dt < render::finestStep(s.camera.eye, share.wholeBounds))
+  if (const double finest = render::finestStep(s.camera.eye, share.wholeBounds);
+      !job.step && s.dt < finest)
     throw Error("the default sample step ", s.dt, " (half the mean element size) is finer than ",
                 "float distances along a ray resolve this far from the data (up to ",
-                render::finestStep(s.camera.eye, share.wholeBounds) * 0x1p24,
-                "): move the eye closer or give --step of at least ",
-                render::finestStep(s.camera.eye, share.wholeBounds));
+                finest * 0x1p24, "): move the eye closer or give --step of at least ", finest);
   // Checked here against the whole data set too, so that every rank refuses the step alike.
   render::checkStep(s.dt, s.camera.eye, share.wholeBounds);
   s.earlyTermination = job.earlyTermination;
