@@ -1,6 +1,7 @@
 #include "app/render_job.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,8 +36,9 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
     return all;
   }
   char* end = nullptr;
+  errno = 0;
   long long t = std::strtoll(job.time.c_str(), &end, 10);
-  if (job.time.empty() || *end || t < 0)
+  if (job.time.empty() || *end || t < 0 || errno == ERANGE)
     throw Error("--time: '", job.time, "' is not a step index or 'all'");
   if (uint64_t(t) >= available)
     throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",

@@ -57,8 +57,9 @@ void writeFileAtomically(const std::string& path,
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
+    const std::string why = ec.message();
     fs::remove(tmp, ec);
-    throw FileError(path, "cannot write: rename failed");
+    throw FileError(path, "cannot write: ", why);
   }
 }
 

@@ -8,6 +8,7 @@
 #include "common/log.h"
 #include "io/array_plan.h"
 #include "io/readers.h"
+#include "io/text_scan.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
 #include "mesh/mesh_builder.h"
@@ -87,8 +88,10 @@ class VtuReader {
         prev = offsets[c];
       }
       NumericArray conn = doc_.decode(need("connectivity"), uint64_t(prev), "cell connectivity", 1);
+      // Named as the file declares it: ascii arrays are decoded to a wider type.
       if (isFloatType(conn.type))
-        throw FileError(src_, "cell connectivity has type ", scalarTypeName(conn.type),
+        throw FileError(src_, "cell connectivity has type ",
+                        printable(need("connectivity").attribute("type").value()),
                         "; point ids must be integers");
       std::vector<int64_t> ghost;
       if (pugi::xml_node g = findDataArray(p.node.child("CellData"), "vtkGhostType"))

@@ -314,6 +314,10 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   const std::string stem = p.stem().string();
   const fs::path folder = p.parent_path() / stem;
   std::error_code ec;
+  // Checked before any piece is written: the index is written last, and failing then would leave
+  // pieces without one.
+  if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
+    throw FileError(path, "cannot write: exists and is not a regular file");
   fs::create_directories(folder, ec);
   if (ec)
     throw FileError(folder.string(), "cannot create the folder for the pieces: ", ec.message());

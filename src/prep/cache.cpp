@@ -144,7 +144,7 @@ uint64_t cacheKey(const mesh::UnstructuredMesh& m, const GlobalFrame& frame,
                   const PrepOptions& options, const std::string& layout) {
   Hasher h;
   h.pod(kCacheFormatVersion).str(layout).pod(options.compact);
-  h.pod(frame.origin).pod(frame.bounds.lo).pod(frame.bounds.hi);
+  h.pod(frame.origin).pod(frame.bounds.lo).pod(frame.bounds.hi).pod(frame.scale);
   h.span(std::span<const glm::dvec3>(m.points));
   for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
     h.span(std::span<const uint32_t>(m.cells[t]));
@@ -155,10 +155,11 @@ uint64_t cacheKey(const mesh::UnstructuredMesh& m, const GlobalFrame& frame,
 
 void writeCache(const std::string& path, const PreparedRank& r, uint64_t key) {
   Writer w;
-  double frame[9] = {r.frame.origin.x,    r.frame.origin.y,    r.frame.origin.z,
-                     r.frame.bounds.lo.x, r.frame.bounds.lo.y, r.frame.bounds.lo.z,
-                     r.frame.bounds.hi.x, r.frame.bounds.hi.y, r.frame.bounds.hi.z};
-  w.section(kFrame, frame, 9);
+  double frame[10] = {r.frame.origin.x,    r.frame.origin.y,    r.frame.origin.z,
+                      r.frame.bounds.lo.x, r.frame.bounds.lo.y, r.frame.bounds.lo.z,
+                      r.frame.bounds.hi.x, r.frame.bounds.hi.y, r.frame.bounds.hi.z,
+                      r.frame.scale};
+  w.section(kFrame, frame, 10);
   w.section(kCounts, r.elementCount.data(), r.elementCount.size());
   w.section(kPositions, r.positions);
   w.section(kVertexSource, r.vertexSource);
@@ -215,11 +216,12 @@ CacheRead parseCache(const uint8_t* data, size_t size, uint64_t key) {
     PreparedRank r;
     r.compact = h.flags & 1;
     auto frame = rd.section<double>(kFrame);
-    if (frame.size() != 9) throw Corrupt{"bad frame section"};
+    if (frame.size() != 10 || !(frame[9] > 0)) throw Corrupt{"bad frame section"};
     r.frame.origin = {frame[0], frame[1], frame[2]};
     r.frame.bounds.lo = {frame[3], frame[4], frame[5]};
     r.frame.bounds.hi = {frame[6], frame[7], frame[8]};
     r.frame.bounds.empty = false;
+    r.frame.scale = frame[9];
     auto counts = rd.section<uint64_t>(kCounts);
     if (counts.size() != mesh::kNumCellTypes) throw Corrupt{"bad element count section"};
     std::copy(counts.begin(), counts.end(), r.elementCount.begin());

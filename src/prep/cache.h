@@ -17,7 +17,7 @@ namespace sm::prep {
 
 // 2: elements in the order of their smallest vertex (orderElementsByVertex); a version-1 cache
 // would still render right, only slower, but a cache is meant to hold what preparation makes now.
-inline constexpr uint32_t kCacheFormatVersion = 2;
+inline constexpr uint32_t kCacheFormatVersion = 3;
 
 // Hash of everything preparation depends on: the rank's mesh geometry and cluster ids, the global
 // frame, the options, a layout string (e.g. "rank 2 of 4, clusters 3,7") and the format version.

@@ -20,7 +20,7 @@ std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalF
   std::vector<uint32_t> order = globalVertexOrder(mesh.points, frame);
   positions.resize(3 * order.size());
   for (size_t i = 0; i < order.size(); ++i) {
-    glm::dvec3 p = mesh.points[order[i]] - frame.origin;
+    glm::dvec3 p = (mesh.points[order[i]] - frame.origin) * frame.scale;
     // Readers accept any finite double; the device works in float around the frame's origin.
     if (!(std::abs(p.x) <= FLT_MAX && std::abs(p.y) <= FLT_MAX && std::abs(p.z) <= FLT_MAX))
       throw Error(mesh.source, ": point ", order[i], " is too far from the mesh's centre for ",
@@ -107,7 +107,8 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
         // The input's points are freed by now; float positions suffice here.
         return frame.origin + glm::dvec3(r.positions[3 * uint64_t(v)],
                                          r.positions[3 * uint64_t(v) + 1],
-                                         r.positions[3 * uint64_t(v) + 2]);
+                                         r.positions[3 * uint64_t(v) + 2]) /
+                                  frame.scale;
       });
   result.timings.connectivity = timer.seconds();
 

@@ -19,6 +19,9 @@ namespace sm::prep {
 // and computes bit-identical crossing distances on shared faces (DESIGN.md invariants 1, 2, 7).
 struct GlobalFrame {
   glm::dvec3 origin{0.0};
+  // Device coordinates are (p - origin) * scale, a power of two (exact): 1 for data sets of
+  // ordinary size, otherwise what brings the largest side to [1, 2) (makeGlobalFrame).
+  double scale = 1.0;
   mesh::Bounds bounds;  // of the whole mesh (all ranks); quantises the Morton key
 };
 GlobalFrame makeGlobalFrame(const mesh::Bounds& wholeMesh);

@@ -33,6 +33,14 @@ GlobalFrame makeGlobalFrame(const mesh::Bounds& b) {
   GlobalFrame f;
   f.bounds = b;
   f.origin = b.empty ? glm::dvec3(0.0) : b.center();
+  // The device's exact predicates multiply up to three coordinates in float: sides far from 1
+  // (1e13 or 1e-18 units, say) overflow or underflow there and rays find nothing. A power of two
+  // brings such a data set's largest side to [1, 2) without rounding any coordinate; data sets of
+  // ordinary size keep scale 1 (and their device coordinates bit for bit).
+  const glm::dvec3 side = b.empty ? glm::dvec3(0.0) : b.hi - b.lo;
+  const double extent = std::max({side.x, side.y, side.z});
+  if (extent > 0.0 && std::isfinite(extent) && (extent < 0x1p-20 || extent > 0x1p20))
+    f.scale = std::ldexp(1.0, -std::ilogb(extent));
   return f;
 }
 

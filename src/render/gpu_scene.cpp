@@ -47,7 +47,8 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
       typesPresent_(r.typesPresent()),
       numVertices_(r.numVertices()),
       shellTriangles_(r.numShellTriangles()),
-      origin_(r.frame.origin) {
+      origin_(r.frame.origin),
+      scale_(r.frame.scale) {
   for (size_t i = 0; i + 2 < r.positions.size(); i += 3)
     bounds_.extend(glm::dvec3(r.positions[i], r.positions[i + 1], r.positions[i + 2]));
   hostPositions_ = r.positions;

@@ -53,8 +53,11 @@ class GpuScene {
   VkAccelerationStructureKHR tlas() const { return tlas_.handle(); }
   uint64_t accelerationStructureBytes() const { return blas_.bytes() + tlas_.bytes(); }
   uint64_t deviceBytes() const;  // every buffer this scene holds
-  glm::dvec3 origin() const { return origin_; }
-  // Bounds of this rank's vertices in rebased coordinates (empty for a rank with no elements).
+  // Device coordinates of a world point: rebased on the frame's origin and scaled by its power of
+  // two (prep::GlobalFrame); lengths along rays scale by scale().
+  glm::dvec3 toDevice(const glm::dvec3& world) const { return (world - origin_) * scale_; }
+  double scale() const { return scale_; }
+  // Bounds of this rank's vertices in device coordinates (empty for a rank with no elements).
   const mesh::Bounds& rebasedBounds() const { return bounds_; }
 
  private:
@@ -64,6 +67,7 @@ class GpuScene {
   uint32_t typesPresent_;
   uint64_t numVertices_, shellTriangles_;
   glm::dvec3 origin_;
+  double scale_;
   mesh::Bounds bounds_;
   void uploadVertices(vk::Buffer& buffer, std::span<const float> scalars) const;
 

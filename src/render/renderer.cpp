@@ -28,6 +28,13 @@ glm::vec3 toFloat(const glm::dvec3& v) {
 // The table the device reads. A constant range maps every value to the table's middle
 // (scene::TransferFunction::lookup); the device gets that colour in every entry, so no rounding
 // of the value (float, far from zero) can move a lookup off it.
+// The transfer function in device lengths: extinction per device unit (prep::GlobalFrame::scale).
+scene::TransferFunction deviceTransferFunction(const scene::TransferFunction& tf, double scale) {
+  scene::TransferFunction d = tf;
+  d.unitDistance *= scale;
+  return d;
+}
+
 std::vector<glm::vec4> deviceTable(const scene::TransferFunction& tf) {
   if (tf.hi > tf.lo) return tf.table;
   return std::vector<glm::vec4>(tf.table.size(), glm::vec4(tf.lookup(tf.lo)));
@@ -65,7 +72,7 @@ FusedPass& Renderer::fusedPass(PassOptions options) {
 
 // The table depends on the transfer function only: rebuilt when that changes, not per frame.
 void Renderer::updatePreintegration(const RenderSettings& s) {
-  const scene::TransferFunction& tf = s.transferFunction;
+  const scene::TransferFunction tf = deviceTransferFunction(s.transferFunction, scene_.scale());
   Hasher h;
   h.span(std::span<const glm::vec4>(tf.table))
       .pod(tf.lo)
@@ -92,7 +99,10 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   const scene::TransferFunction& tf = s.transferFunction;
   if (tf.table.size() < 2) throw Error("transfer function has no table");
   scene::CameraFrame cam = scene::cameraFrame(s.camera, s.width, s.height);
-  if (!useRays_) checkStep(s.dt, cam.eye - scene_.origin(), scene_.rebasedBounds());
+  // Device lengths are world lengths times scene_.scale() (1 for data sets of ordinary size).
+  const double scale = scene_.scale();
+  const glm::dvec3 eye = scene_.toDevice(cam.eye);
+  if (!useRays_) checkStep(s.dt * scale, eye, scene_.rebasedBounds());
   gpu::FrameParams p{};
   p.scene = scene_.refs();
   p.transferFunction = transferFunction_.valid() ? transferFunction_.address() : 0;
@@ -101,7 +111,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   // Rays can only start inside the volume when the eye is within this rank's bounds (padded for
   // rounding); elsewhere the traversal skips the query that looks for such a start.
   const mesh::Bounds& b = scene_.rebasedBounds();
-  glm::dvec3 eye = cam.eye - scene_.origin(), pad(1e-3 * b.diagonal() + 1e-30);
+  const glm::dvec3 pad(1e-3 * b.diagonal() + 1e-30);
   bool inBounds = !b.empty && glm::all(glm::greaterThanEqual(eye, b.lo - pad)) &&
                   glm::all(glm::lessThanEqual(eye, b.hi + pad));
   p.eyeMayBeInside = (useRays_ || inBounds) ? 1u : 0u;
@@ -110,7 +120,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.boundsLo = glm::vec3(b.lo);
     p.boundsHi = glm::vec3(b.hi);
   }
-  p.eye = toFloat(cam.eye - scene_.origin());
+  p.eye = toFloat(eye);
   p.forward = toFloat(cam.forward);
   p.right = toFloat(cam.right);
   p.upOrtho = toFloat(cam.upOrtho);
@@ -118,7 +128,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.aspect = float(cam.aspect);
   p.width = uint32_t(s.width);
   p.height = uint32_t(s.height);
-  p.dt = float(s.dt);
+  p.dt = float(s.dt * scale);
   if (tf.hi > tf.lo) {
     p.tfLo = float(tf.lo);
     p.tfScale = float(1.0 / (tf.hi - tf.lo));
@@ -127,7 +137,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.tfScale = 1.0f;
   }
   p.tfEntries = uint32_t(tf.table.size());
-  p.sigmaScale = float(tf.opacityScale / tf.unitDistance);
+  p.sigmaScale = float(tf.opacityScale / (tf.unitDistance * scale));
   p.earlyTermination = float(s.earlyTermination);
   if (s.shading.enabled) {
     const Shading& sh = s.shading;
@@ -171,10 +181,10 @@ FrameResult Renderer::renderRays(const RenderSettings& settings,
                                  const std::vector<WorldRay>& rays) {
   std::vector<gpu::RayDesc> rebased(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) {
-    rebased[i] = {glm::vec3(rays[i].origin - scene_.origin()), glm::vec3(rays[i].direction)};
+    rebased[i] = {glm::vec3(scene_.toDevice(rays[i].origin)), glm::vec3(rays[i].direction)};
     // Each ray measures t from its own origin, in units of its direction's length.
-    checkStep(settings.dt * glm::length(rays[i].direction), rays[i].origin - scene_.origin(),
-              scene_.rebasedBounds());
+    checkStep(settings.dt * scene_.scale() * glm::length(rays[i].direction),
+              scene_.toDevice(rays[i].origin), scene_.rebasedBounds());
   }
   if (!rays_.valid() || rays_.size() < rebased.size() * sizeof(gpu::RayDesc))
     rays_ = vk::Buffer(ctx_, rebased.size() * sizeof(gpu::RayDesc), vk::kStorageUsage,

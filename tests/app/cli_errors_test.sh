@@ -27,6 +27,10 @@ expect "--step" "$sm" render ok.pvtu --step inf --out a.png
 expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
 expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
 expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
+expect "--time: '18446744073709551616'" "$sm" render ok.pvtu --time 18446744073709551616 --out a.png
+mkdir -p dirout.pvtu
+expect "dirout.pvtu: cannot write" "$sm" generate --analytic cube-tets6 --cube-n 2 --out dirout.pvtu
+if [ -e dirout ]; then echo "FAIL: generate left pieces behind"; fails=$((fails + 1)); fi
 expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png
 expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
 expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png

@@ -380,6 +380,31 @@ TEST(HardCases, StepBoundTerminates) {
   EXPECT_EQ(g.frame.counters.lostRays, 0u);
 }
 
+// Data sets far from unit size: the device's exact predicates multiply up to three coordinates in
+// float, which overflowed (sides of 1e13) or underflowed (1e-18) until preparation scaled such data
+// sets by a power of two (prep::GlobalFrame::scale). Each scaled cube matches the reference; scaled
+// by a power of two, its device coordinates and so its image equal the unit cube's bit for bit.
+TEST(HardCases, DataSetsFarFromUnitSize) {
+  const RenderSettings unitView = cubeView(32);
+  auto unit = ref::test::cubeMesh(Split::Tets5, 3);
+  const auto unitImage = test::renderOnGpu(unit, smoothField(unit, {0, 0, 0}, 1), unitView).image;
+  for (double k : {0x1p50, 0x1p-66, 1e15, 1e-20}) {
+    auto m = ref::test::cubeMesh(Split::Tets5, 3, k);
+    auto f = smoothField(m, {0, 0, 0}, k);
+    RenderSettings s = unitView;
+    s.camera.eye *= k;
+    s.camera.at *= k;
+    s.dt *= k;
+    s.transferFunction.unitDistance *= k;
+    auto g = test::renderOnGpu(m, f, s);
+    EXPECT_EQ(g.frame.counters.lostRays, 0u) << k;
+    auto e = test::expectImagesClose("scale_" + std::to_string(std::ilogb(k)),
+                                     test::renderReference(m, f, s), g.image);
+    EXPECT_EQ(e.nanPixels, 0) << k;
+    if (k == 0x1p50 || k == 0x1p-66) EXPECT_EQ(g.image.pixels, unitImage.pixels) << k;
+  }
+}
+
 // Samples sit at t = k dt in float, and the samples of one walk are not bounded otherwise: a step
 // finer than the farthest corner's distance over 2^24 would repeat positions and, past 2^32
 // steps, wrap the device's sample index and never end. It is refused, naming --step; the finest
