@@ -102,6 +102,20 @@ TEST(Connectivity, DuplicatedCellsAreAnError) {
   }
 }
 
+// Points whose distance from the centre float cannot hold (the extent itself overflows, so no
+// power-of-two scale applies) are refused, naming the file.
+TEST(Connectivity, PointsBeyondFloatRangeOfTheCentreAreRefused) {
+  mesh::MeshBuilder b("huge.vtu");
+  b.setPoints({{-1.7e308, 0, 0}, {1.7e308, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  const int64_t t[4] = {0, 1, 2, 3};
+  b.addVtkCell(10, t, 0);
+  auto m = b.finish();
+  const std::string msg = preparationError(m);
+  EXPECT_NE(msg.find("huge.vtu: point"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("too far from the mesh's centre for single precision"), std::string::npos)
+      << msg;
+}
+
 TEST(Connectivity, EmptyMeshPreparesToNothing) {
   mesh::UnstructuredMesh m;
   auto res = prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{});
