@@ -19,7 +19,7 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--at", t["--at"], "Point looked at x,y,z (default: the data's centre)");
   cmd->add_option("--up", t["--up"], "Up direction x,y,z (default 0,0,1)");
   cmd->add_option("--fovy", job.fovy, "Vertical field of view in degrees (default 30)");
-  cmd->add_option("--view", job.view, "Framing view when no --eye: iso, +x, -x, +y, -y, +z, -z");
+  cmd->add_option("--view", t["--view"], "Framing view when no --eye: iso, +x, -x, +y, -y, +z, -z");
   cmd->add_option(
       "--colormap", job.colormap,
       "viridis, cool-to-warm, inferno, plasma, grayscale, jet, turbo, or a ParaView .json");
@@ -47,7 +47,7 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids");
   cmd->add_option("--lists", t["--lists"],
                   "Fragment lists: two-pass (exact), drop or merge (fixed K)");
-  cmd->add_option("--k", job.lists.fixedK, "Slots per pixel for fixed-length lists (default 8)");
+  cmd->add_option("--k", t["--k"], "Slots per pixel for fixed-length lists (default 8)");
   cmd->add_option("--encoding", t["--encoding"], "Fragment encoding: float or rgba8");
   cmd->add_flag("--plain", raw.plain, "Keep elements uncompacted (no XOR compaction)");
   cmd->add_option("--device", job.device, "Vulkan device index or name substring");
@@ -73,6 +73,24 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.shading = parseShading("--shading-params", get("--shading-params"));
   if (raw.shading) job.shading.enabled = true;
   job.compact = !raw.plain;
+  // Options that another one makes meaningless are refused rather than silently ignored.
+  if (!get("--view").empty()) {
+    if (job.eye)
+      throw Error("--view and --eye: give one (--view frames the data, --eye places the camera)");
+    job.view = get("--view");
+  }
+  if (!get("--k").empty()) {
+    const std::string& k = get("--k");
+    char* end = nullptr;
+    const long long n = std::strtoll(k.c_str(), &end, 10);
+    if (k.empty() || *end || n < 1 || n > 65535)
+      throw Error("--k: '", k, "' is not a slot count (1 .. 65535)");
+    if (job.lists.mode == comp::ListMode::TwoPass)
+      throw Error(
+          "--k: slots are for fixed-length lists (--lists drop or merge); two-pass lists "
+          "hold every fragment");
+    job.lists.fixedK = uint32_t(n);
+  }
   if (!get("--clusters").empty()) {
     const std::string& c = get("--clusters");
     char* end = nullptr;

@@ -26,6 +26,10 @@ expect "--step" "$sm" render ok.pvtu --step inf --out a.png
 # Finer than float positions along the rays resolve (sample indices would wrap): refused, not hung.
 expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
 expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
+# Options another one makes meaningless are refused, not silently ignored.
+expect "--view and --eye" "$sm" render ok.pvtu --view +x --eye 3,3,3 --out a.png
+expect "--k: slots are for fixed-length lists" "$sm" render ok.pvtu --k 4 --out a.png
+expect "--k" "$sm" render ok.pvtu --lists drop --k 0 --out a.png
 expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
 expect "--time: '18446744073709551616'" "$sm" render ok.pvtu --time 18446744073709551616 --out a.png
 mkdir -p dirout.pvtu
