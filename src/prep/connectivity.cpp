@@ -1,7 +1,6 @@
 #include "prep/connectivity.h"
 
 #include <algorithm>
-#include <array>
 
 #include "common/check.h"
 #include "common/error.h"
@@ -102,12 +101,10 @@ bool sameCell(const ElementArrays& elements, const FaceSlots::Slot& s0, const Fa
     xorB ^= b[i];
   }
   if (sumA != sumB || xorA != xorB) return false;
-  std::array<uint32_t, 8> sa{}, sb{};
-  std::copy(a, a + nv, sa.begin());
-  std::copy(b, b + nv, sb.begin());
-  std::sort(sa.begin(), sa.begin() + nv);
-  std::sort(sb.begin(), sb.begin() + nv);
-  return std::equal(sa.begin(), sa.begin() + nv, sb.begin());
+  // Every id of one is among the other's (ids of an element are distinct, counts equal).
+  for (uint32_t i = 0; i < nv; ++i)
+    if (std::find(b, b + nv, a[i]) == b + nv) return false;
+  return true;
 }
 
 std::string elementName(const FaceSlots::Slot& s) {
