@@ -1,5 +1,6 @@
 #include "app/cli_parsers.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -73,6 +74,16 @@ double parsePositive(const std::string& option, const std::string& value) {
   double v = numbers(option, value, ',', 1)[0];
   if (!(v > 0)) throw Error(option, ": ", value, " must be positive");
   return v;
+}
+
+int64_t parseCount(const std::string& option, const std::string& value, const char* what,
+                   int64_t hi, const char* hiText) {
+  char* end = nullptr;
+  errno = 0;
+  const long long n = std::strtoll(value.c_str(), &end, 10);
+  if (value.empty() || *end || errno == ERANGE || n < 1 || n > hi)
+    throw Error(option, ": '", value, "' is not a ", what, " (1 .. ", hiText, ")");
+  return n;
 }
 
 comp::ListMode parseListMode(const std::string& value) {

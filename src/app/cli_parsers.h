@@ -1,6 +1,7 @@
 // Parsers for option values (sizes, vectors, ranges, enums) with one-line errors naming the option.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -14,7 +15,10 @@ namespace sm::app {
 std::pair<int, int> parseSize(const std::string& option, const std::string& value);  // "WxH"
 glm::dvec3 parseVec3(const std::string& option, const std::string& value);           // "x,y,z"
 std::pair<double, double> parseRange(const std::string& option,
-                                     const std::string& value);             // "lo,hi"
+                                     const std::string& value);  // "lo,hi"
+// A whole number in 1 .. hi, else an error naming the option, `what` it counts and hiText.
+int64_t parseCount(const std::string& option, const std::string& value, const char* what,
+                   int64_t hi, const char* hiText);
 double parsePositive(const std::string& option, const std::string& value);  // > 0, finite
 comp::ListMode parseListMode(const std::string& value);                // two-pass | drop | merge
 comp::Encoding parseEncoding(const std::string& value);                // float | rgba8

@@ -1,7 +1,6 @@
 #include "app/scene_options.h"
 
 #include <cmath>
-#include <cstdlib>
 
 #include "app/cli_parsers.h"
 #include "common/error.h"
@@ -80,25 +79,16 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.view = get("--view");
   }
   if (!get("--k").empty()) {
-    const std::string& k = get("--k");
-    char* end = nullptr;
-    const long long n = std::strtoll(k.c_str(), &end, 10);
-    if (k.empty() || *end || n < 1 || n > 65535)
-      throw Error("--k: '", k, "' is not a slot count (1 .. 65535)");
+    const int64_t k = parseCount("--k", get("--k"), "slot count", 65535, "65535");
     if (job.lists.mode == comp::ListMode::TwoPass)
       throw Error(
           "--k: slots are for fixed-length lists (--lists drop or merge); two-pass lists "
           "hold every fragment");
-    job.lists.fixedK = uint32_t(n);
+    job.lists.fixedK = uint32_t(k);
   }
-  if (!get("--clusters").empty()) {
-    const std::string& c = get("--clusters");
-    char* end = nullptr;
-    const long long n = std::strtoll(c.c_str(), &end, 10);
-    if (c.empty() || *end || n < 1 || n > (1 << 30))
-      throw Error("--clusters: '", c, "' is not a cluster count (1 .. 2^30)");
-    job.share.metisClusters = int(n);
-  }
+  if (!get("--clusters").empty())
+    job.share.metisClusters =
+        int(parseCount("--clusters", get("--clusters"), "cluster count", 1 << 30, "2^30"));
   if (!(job.earlyTermination > 0 && job.earlyTermination <= 1))
     throw Error("--early-termination: ", job.earlyTermination,
                 " is not an opacity in (0, 1] (1: rays stop only when opaque)");
