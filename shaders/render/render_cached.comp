@@ -53,7 +53,6 @@ void main() {
     dcEnd(wr, fp.fragCounts, pixel);
     return;  // counted in the count pass already: a retraced pixel's statistics are dropped
   }
-  uint retraces = subgroupAdd(nseg > fp.segCacheK ? 1u : 0u);
-  if (retraces != 0u && subgroupElect()) atomicAdd(SmStats(fp.stats).s.cacheRetraces, retraces);
+  SM_FLUSH(SmStats(fp.stats).s.cacheRetraces, nseg > fp.segCacheK ? 1u : 0u);
   flushStats(fp, st, nseg, fragments, 0u);
 }

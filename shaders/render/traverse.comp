@@ -32,6 +32,5 @@ void main() {
   }
   if (store) return;
   SmUints(fp.segCounts).v[pixel] = n;
-  uint queries = subgroupAdd(tr.queries);
-  if (subgroupElect()) atomicAdd(SmStats(fp.stats).s.shellQueries, queries);
+  SM_FLUSH(SmStats(fp.stats).s.shellQueries, tr.queries);
 }
