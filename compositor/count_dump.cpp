@@ -18,17 +18,23 @@ std::runtime_error dumpError(const std::string& path, const std::string& what) {
   return std::runtime_error("fragment count dump " + path + ": " + what);
 }
 
+// Checked before the file is created: a constructor that throws has no destructor to remove it.
+const std::string& checkedShape(const std::string& path, uint32_t width, uint32_t height,
+                                uint32_t ranks) {
+  if (width == 0 || height == 0 || ranks == 0) throw dumpError(path, "empty image or no ranks");
+  return path;
+}
+
 }  // namespace
 
 CountDumpWriter::CountDumpWriter(const std::string& path, uint32_t width, uint32_t height,
                                  uint32_t ranks)
-    : path_(path),
+    : path_(checkedShape(path, width, height, ranks)),
       temp_(path + ".part"),
       out_(temp_, std::ios::binary),
       pixels_(uint64_t(width) * height),
       ranks_(ranks) {
   if (!out_) throw dumpError(path, "cannot create " + temp_);
-  if (width == 0 || height == 0 || ranks == 0) throw dumpError(path, "empty image or no ranks");
   const uint32_t header[4] = {width, height, ranks, 0};
   out_.write(kMagic, sizeof kMagic);
   out_.write(reinterpret_cast<const char*>(header), sizeof header);

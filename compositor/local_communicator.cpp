@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <system_error>
 #include <thread>
 
 namespace sm::comp {
@@ -141,18 +142,34 @@ void runLocalRanks(int ranks, const std::function<void(Communicator&)>& fn) {
   auto group = std::make_shared<LocalGroup>(ranks);
   std::vector<std::exception_ptr> errors(static_cast<size_t>(ranks));
   std::vector<std::thread> threads;
+  threads.reserve(size_t(ranks));
+  // A thread that cannot start (no memory for its stack, a thread limit) must end the ranks that
+  // did start, which would otherwise wait for it in their first collective; and the started threads
+  // must be joined before the error leaves, or their destructors terminate the process.
+  auto startFailed = [&](int r, const std::system_error& e) {
+    const std::string m = "local ranks: cannot start rank " + std::to_string(r) + " of " +
+                          std::to_string(ranks) + ": " + e.what();
+    group->abort(m);
+    for (auto& t : threads) t.join();
+    throw CommError(m);
+  };
+  auto rankMain = [&](int r) {
+    LocalCommunicator comm(group, r);
+    try {
+      fn(comm);
+    } catch (const CommAborted&) {
+      errors[size_t(r)] = std::current_exception();
+    } catch (const std::exception& e) {
+      errors[size_t(r)] = std::current_exception();
+      group->abort("rank " + std::to_string(r) + ": " + e.what());
+    }
+  };
   for (int r = 0; r < ranks; ++r) {
-    threads.emplace_back([&, r] {
-      LocalCommunicator comm(group, r);
-      try {
-        fn(comm);
-      } catch (const CommAborted&) {
-        errors[size_t(r)] = std::current_exception();
-      } catch (const std::exception& e) {
-        errors[size_t(r)] = std::current_exception();
-        group->abort("rank " + std::to_string(r) + ": " + e.what());
-      }
-    });
+    try {
+      threads.emplace_back(rankMain, r);
+    } catch (const std::system_error& e) {
+      startFailed(r, e);
+    }
   }
   for (auto& t : threads) t.join();
   // Prefer the error that started it over the CommAborted the other ranks saw.

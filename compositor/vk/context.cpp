@@ -67,6 +67,17 @@ std::vector<std::string> missingFor(VkPhysicalDevice pd, const ContextOptions& o
   if (!fc.f2.features.shaderInt64) missing.push_back("shaderInt64");
   if (o.requireRayQuery && !fc.as.accelerationStructure) missing.push_back("accelerationStructure");
   if (o.requireRayQuery && !fc.rq.rayQuery) missing.push_back("rayQuery");
+  // The compute shaders reduce statistics and list sizes across a subgroup (basic, arithmetic)
+  // and branch on subgroup votes; without them pipeline creation fails later with no reason given.
+  VkPhysicalDeviceSubgroupProperties sg{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sg};
+  vkGetPhysicalDeviceProperties2(pd, &p2);
+  if (!(sg.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT)) missing.push_back("compute subgroups");
+  constexpr VkSubgroupFeatureFlags kOps = VK_SUBGROUP_FEATURE_BASIC_BIT |
+                                          VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                          VK_SUBGROUP_FEATURE_VOTE_BIT;
+  if ((sg.supportedOperations & kOps) != kOps)
+    missing.push_back("subgroup basic, arithmetic and vote operations");
   return missing;
 }
 

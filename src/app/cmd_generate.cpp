@@ -71,6 +71,16 @@ void validate(const GenerateArgs& a, const CLI::App& cmd) {
     throw Error("--cube-n: must be between 1 and 1000, got ", a.cubeN);
   if (cmd.count("--cube-n") && a.analytic.rfind("cube-", 0) != 0)
     throw Error("--cube-n: applies to --analytic cube-* meshes only");
+  // Bounded like --elements, before anything is allocated: a cube too large for memory would
+  // otherwise end in an "out of memory" that names no option.
+  const uint64_t perCube = a.analytic == "cube-hex"      ? 1
+                           : a.analytic == "cube-wedges" ? 2
+                           : a.analytic == "cube-tets5"  ? 5
+                                                         : 6;
+  const uint64_t cells = uint64_t(a.cubeN) * uint64_t(a.cubeN) * uint64_t(a.cubeN) * perCube;
+  if (a.analytic.rfind("cube-", 0) == 0 && cells > kMaxElements)
+    throw Error("--cube-n: ", a.cubeN, " makes ", cells, " cells of ", a.analytic, ", more than ",
+                kMaxElements);
 }
 
 std::string summary(const std::string& out, const mesh::UnstructuredMesh& m, double seconds) {

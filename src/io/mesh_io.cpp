@@ -22,6 +22,9 @@ Format formatOf(const std::string& path) {
 }  // namespace
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
+  // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
+  if (!options.pieces.empty() && formatOf(path) != Format::Pvtu)
+    throw FileError(path, "has no pieces to choose from (only a .pvtu has pieces)");
   switch (formatOf(path)) {
     case Format::Vtu:
       return readVtu(FileBytes::open(path), path, options);

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "io/array_plan.h"
+#include "io/ghost_cells.h"
 #include "io/legacy_scanner.h"
 #include "io/numeric_array.h"
 #include "io/readers.h"
@@ -17,8 +18,7 @@
 namespace sm::io {
 namespace {
 
-constexpr int64_t kMaxIds = 32;        // ids handed to the builder per cell
-constexpr int64_t kDuplicateCell = 1;  // vtkGhostType flag of cells owned elsewhere
+constexpr int64_t kMaxIds = 32;  // ids handed to the builder per cell
 
 struct Array {
   std::string name;
@@ -204,9 +204,7 @@ class LegacyReader {
   void addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>& offsets,
                    const std::vector<int64_t>& types, const std::vector<int64_t>& ghost);
   bool skipGhost(const std::vector<int64_t>& ghost, uint64_t c) {
-    if (ghost.empty() || !(ghost[c] & kDuplicateCell)) return false;
-    ++ghostCells_;
-    return true;
+    return ghostCells_.skip(ghost, c);
   }
   void addFields(mesh::MeshBuilder& b);
   void addClusters(mesh::MeshBuilder& b);
@@ -216,7 +214,8 @@ class LegacyReader {
   LegacyScanner in_;
   bool newLayout_ = false, haveCells_ = false, haveTypes_ = false;
   Where where_ = Where::Dataset;
-  uint64_t numPoints_ = 0, numCells_ = 0, ghostCells_ = 0;
+  uint64_t numPoints_ = 0, numCells_ = 0;
+  GhostCells ghostCells_;
   NumericArray points_, conn_, offsets_, types_, timeValues_;
   std::vector<Array> pointArrays_, cellArrays_;
 };
@@ -325,8 +324,7 @@ mesh::UnstructuredMesh LegacyReader::build() {
       });
     }
   }
-  if (ghostCells_)
-    log::warning(src_, ": skipped ", ghostCells_, " ghost cells (vtkGhostType: owned elsewhere)");
+  ghostCells_.warn(src_);
   addClusters(b);
   if (options_.loadFields) addFields(b);
   if (timeValues_.data) {

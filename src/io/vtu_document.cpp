@@ -1,5 +1,6 @@
 #include "io/vtu_document.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 #include <string_view>
@@ -18,6 +19,16 @@ std::string_view asText(std::span<const uint8_t> b) {
 constexpr uint64_t kMaxBytes = uint64_t(1) << 60;
 
 }  // namespace
+
+bool isParallelVtkXml(std::span<const uint8_t> bytes) {
+  const std::string_view head(reinterpret_cast<const char*>(bytes.data()),
+                              std::min<size_t>(bytes.size(), 4096));
+  const size_t tag = head.find("<VTKFile");
+  if (tag == std::string_view::npos) return false;
+  const std::string_view attrs = head.substr(tag, head.find('>', tag) - tag);
+  return attrs.find("type=\"PUnstructuredGrid\"") != std::string_view::npos ||
+         attrs.find("type='PUnstructuredGrid'") != std::string_view::npos;
+}
 
 VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads)
     : source_(std::move(source)) {

@@ -16,6 +16,10 @@
 
 namespace sm::io {
 
+// Whether the <VTKFile> tag near the start of `bytes` says type="PUnstructuredGrid" (a .pvtu
+// index), without parsing the document.
+bool isParallelVtkXml(std::span<const uint8_t> bytes);
+
 class VtuDocument {
  public:
   // Parses bytes (in place: bytes must outlive the document). `type` is the VTKFile type this

@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "io/array_plan.h"
+#include "io/ghost_cells.h"
 #include "io/readers.h"
 #include "io/text_scan.h"
 #include "io/vtu_arrays.h"
@@ -18,8 +19,6 @@ namespace {
 
 using Piece = VtuPiece;
 
-// VTK's ghost flag for cells another piece owns (vtkDataSetAttributes::DUPLICATECELL).
-constexpr int64_t kDuplicateCell = 1;
 // Ids handed to the builder per cell; volume cells need at most 27 (triquadratic hexahedron).
 constexpr int64_t kMaxIds = 32;
 
@@ -104,9 +103,7 @@ class VtuReader {
           addCells<T, decltype(swap)::value>(p, conn.data, offsets, types, ghost);
       });
     }
-    if (ghostCells_)
-      log::warning(src_, ": skipped ", ghostCells_,
-                   " ghost cells (vtkGhostType: owned by another piece)");
+    ghostCells_.warn(src_);
   }
 
   void reserve(const std::vector<int64_t>& types) {
@@ -126,8 +123,7 @@ class VtuReader {
     for (uint64_t c = 0; c < p.numCells; ++c) {
       const int64_t end = offsets[c];
       const uint64_t fileCell = p.firstCell + c;
-      if (!ghost.empty() && (ghost[c] & kDuplicateCell)) {
-        ++ghostCells_;
+      if (ghostCells_.skip(ghost, c)) {
         begin = end;
         continue;
       }
@@ -217,13 +213,17 @@ class VtuReader {
   std::optional<int32_t> pieceCluster_;
   mesh::MeshBuilder builder_;
   std::vector<Piece> pieces_;
-  uint64_t ghostCells_ = 0;
+  GhostCells ghostCells_;
 };
 
 }  // namespace
 
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options, std::optional<int32_t> pieceCluster) {
+  // A piece is named by a .pvtu, so the document's advice for a parallel file named as a .vtu
+  // ("give it the .pvtu extension") would be wrong here.
+  if (pieceCluster && isParallelVtkXml(bytes.span()))
+    throw FileError(source, "is itself a .pvtu index, named as a piece: pieces must be .vtu files");
   VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads);
   return VtuReader(doc, options, pieceCluster).read();
 }

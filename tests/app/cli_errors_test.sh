@@ -32,6 +32,12 @@ expect "--k: slots are for fixed-length lists" "$sm" render ok.pvtu --k 4 --out 
 expect "--k" "$sm" render ok.pvtu --lists drop --k 0 --out a.png
 expect "--time" "$sm" render ok.pvtu --time 99 --out a.png
 expect "--time: '18446744073709551616'" "$sm" render ok.pvtu --time 18446744073709551616 --out a.png
+expect "--cube-n: 1000 makes 6000000000 cells" "$sm" generate --analytic cube-tets6 --cube-n 1000 --out big.pvtu
+expect "--cube-n: 465 makes 100544625 cells" "$sm" generate --analytic cube-hex --cube-n 465 --out big.pvtu
+expect "ok_0.vtu: has no pieces to choose from" "$sm" info ok/ok_0.vtu --pieces 0
+expect "--meshes: empty entry in ''" "$sm" bench accuracy --meshes '' --work-dir acc
+expect "--meshes: empty entry in 'demo,,lander'" "$sm" bench accuracy --meshes demo,,lander --work-dir acc
+if [ -e acc ]; then echo "FAIL: bench accuracy made its work folder for nothing"; fails=$((fails + 1)); fi
 mkdir -p dirout.pvtu
 expect "dirout.pvtu: cannot write" "$sm" generate --analytic cube-tets6 --cube-n 2 --out dirout.pvtu
 if [ -e dirout ]; then echo "FAIL: generate left pieces behind"; fails=$((fails + 1)); fi

@@ -1,12 +1,15 @@
 // In-process ranks, count dumps and comparison images: the host pieces the compositor and its
 // benchmark rely on.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <string>
 
 #include "compositor/count_dump.h"
 #include "compositor/image_compare.h"
@@ -92,6 +95,38 @@ TEST(CompositorLocalCommunicator, RunOrAbortTurnsAnErrorIntoAnAbortOfAllRanks) {
   }
 }
 
+// When a rank's thread cannot start, the ranks that did start leave their collectives and the
+// caller gets a CommError instead of std::terminate (a joinable std::thread destroyed). Run in a
+// child process whose address space is capped so that thread stacks (8 MiB each) soon run out.
+TEST(CompositorLocalCommunicator, ARankThatCannotStartEndsTheOthersWithAnError) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers' own mappings do not survive an address-space cap";
+#endif
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        struct rlimit cap = {};
+        getrlimit(RLIMIT_AS, &cap);
+        std::ifstream status("/proc/self/status");
+        std::string line;
+        uint64_t kib = 0;
+        while (std::getline(status, line))
+          if (line.rfind("VmSize:", 0) == 0) kib = std::stoull(line.substr(7));
+        cap.rlim_cur = (kib + 48 * 1024) * 1024;  // room for a few stacks, not 256
+        setrlimit(RLIMIT_AS, &cap);
+        try {
+          runLocalRanks(256, [](Communicator& c) { c.barrier(); });
+        } catch (const CommAborted&) {
+          std::_Exit(3);
+        } catch (const CommError& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          std::_Exit(std::string(e.what()).find("cannot start rank") != std::string::npos ? 0 : 4);
+        }
+        std::_Exit(5);  // every thread started: the cap did not bite
+      },
+      ::testing::ExitedWithCode(0), "local ranks: cannot start rank [0-9]+ of 256");
+}
+
 std::string tempPath(const char* name) {
   return ::testing::TempDir() + name;
 }
@@ -127,6 +162,9 @@ TEST(CompositorCountDump, RejectsWrongSizesAndForeignFiles) {
   // An unfinished dump never takes the name of a whole one, nor stays behind as a part.
   EXPECT_FALSE(std::ifstream(path).good());
   EXPECT_FALSE(std::ifstream(path + ".part").good());
+  EXPECT_THROW(CountDumpWriter(path, 0, 2, 1), std::runtime_error) << "empty image";
+  EXPECT_THROW(CountDumpWriter(path, 2, 2, 0), std::runtime_error) << "no ranks";
+  EXPECT_FALSE(std::ifstream(path + ".part").good()) << "a refused dump leaves no part behind";
   {  // A dump cut short on disk (a full disk, a copy interrupted) is caught by the reader.
     CountDumpWriter w(path, 2, 2, 2);
     w.append(std::vector<uint32_t>(4));

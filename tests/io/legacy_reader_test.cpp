@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/mesh_io.h"
@@ -150,6 +151,44 @@ flags 1 5 bit
   ReadOptions o;
   o.fields = {"ids"};
   EXPECT_EQ(readMesh(path, o).fields[0].steps[0][4], 4.0f);
+}
+
+// vtkGhostType: DUPLICATECELL (1, another piece's) and HIDDENCELL (32, blanked) cells are left
+// out; other flags (2: high connectivity) and none keep the cell. Four tetrahedra on a shared
+// base, told apart by their apex point.
+TEST(LegacyReader, GhostCellsOwnedElsewhereOrHiddenAreSkipped) {
+  const std::string path = sm::test::outputDir("LegacyReader.GhostCells") + "/ghosts.vtk";
+  test::writeText(path, R"(# vtk DataFile Version 3.0
+ghost cells
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 7 float
+0 0 0  1 0 0  0 1 0  0 0 1  0 0 2  0 0 3  0 0 4
+CELLS 4 20
+4 0 1 2 3
+4 0 1 2 4
+4 0 1 2 5
+4 0 1 2 6
+CELL_TYPES 4
+10 10 10 10
+CELL_DATA 4
+SCALARS vtkGhostType unsigned_char 1
+LOOKUP_TABLE default
+0 1 32 2
+)");
+  testing::internal::CaptureStderr();
+  mesh::UnstructuredMesh m = readMesh(path);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(m.numCells(), 2u);
+  std::vector<double> apexZ;
+  for (uint64_t i = 0; i < 2; ++i)
+    for (uint32_t v : cellIds(m, CellType::Tet, i))
+      if (m.points[v].z > 0.0) apexZ.push_back(m.points[v].z);
+  std::sort(apexZ.begin(), apexZ.end());
+  EXPECT_EQ(apexZ, (std::vector<double>{1.0, 4.0}));
+  EXPECT_NE(err.find("skipped 1 ghost cells (vtkGhostType DUPLICATECELL"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("skipped 1 hidden cells (vtkGhostType HIDDENCELL)"), std::string::npos) << err;
 }
 
 TEST(LegacyReader, RejectsOtherDataSets) {

@@ -105,6 +105,24 @@ TEST(PvtuReader, MissingPieceFileIsNamed) {
   EXPECT_EQ(countPieces(dir + "/m.pvtu"), 1);
 }
 
+// A piece that is itself a .pvtu index is named as such; the advice for a parallel file named
+// .vtu ("give it the .pvtu extension") does not apply to a piece.
+TEST(PvtuReader, APieceThatIsItselfAPvtuIsNamed) {
+  const std::string dir = sm::test::outputDir("PvtuReader.NestedPvtu");
+  const std::string index =
+      "<?xml version=\"1.0\"?><VTKFile type=\"PUnstructuredGrid\" version=\"1.0\">"
+      "<PUnstructuredGrid><Piece Source=\"inner.vtu\"/></PUnstructuredGrid></VTKFile>";
+  test::writeText(dir + "/outer.pvtu", index);
+  test::writeText(dir + "/inner.vtu", index);
+  std::string msg = fileErrorOf([&] { readMesh(dir + "/outer.pvtu"); });
+  EXPECT_NE(msg.find("inner.vtu"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("is itself a .pvtu index"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("give it the .pvtu extension"), std::string::npos) << msg;
+  // Read on its own, the same file gets the advice.
+  msg = fileErrorOf([&] { readMesh(dir + "/inner.vtu"); });
+  EXPECT_NE(msg.find("give it the .pvtu extension"), std::string::npos) << msg;
+}
+
 TEST(Weld, MergesAcrossPiecesOnlyAndOnlyBitwiseEqualPoints) {
   mesh::UnstructuredMesh a, b;
   a.points = {{0, 0, 0}, {0, 0, 0}, {1, 0, 0}};  // a duplicate inside one piece stays two points

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/mesh_io.h"
@@ -104,6 +105,49 @@ TEST(VtuReader, UnknownClusterArrayListsTheCellArrays) {
   std::string msg = fileErrorOf([&] { readMesh(fixturePath("mesh_ascii.vtu"), o); });
   EXPECT_NE(msg.find("'rank'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("cluster, quality"), std::string::npos) << msg;
+}
+
+// vtkGhostType: DUPLICATECELL (1, another piece's) and HIDDENCELL (32, blanked) cells are left
+// out; other flags (16: exterior) and none keep the cell. Four tetrahedra on a shared base, told
+// apart by their apex point.
+TEST(VtuReader, GhostCellsOwnedElsewhereOrHiddenAreSkipped) {
+  const std::string path = sm::test::outputDir("VtuReader.GhostCells") + "/ghosts.vtu";
+  test::writeText(path, R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <UnstructuredGrid>
+    <Piece NumberOfPoints="7" NumberOfCells="4">
+      <Points>
+        <DataArray type="Float32" NumberOfComponents="3" format="ascii">
+          0 0 0  1 0 0  0 1 0  0 0 1  0 0 2  0 0 3  0 0 4
+        </DataArray>
+      </Points>
+      <Cells>
+        <DataArray type="Int64" Name="connectivity" format="ascii">
+          0 1 2 3  0 1 2 4  0 1 2 5  0 1 2 6
+        </DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">4 8 12 16</DataArray>
+        <DataArray type="UInt8" Name="types" format="ascii">10 10 10 10</DataArray>
+      </Cells>
+      <CellData>
+        <DataArray type="UInt8" Name="vtkGhostType" format="ascii">1 32 16 0</DataArray>
+      </CellData>
+    </Piece>
+  </UnstructuredGrid>
+</VTKFile>
+)");
+  testing::internal::CaptureStderr();
+  mesh::UnstructuredMesh m = readMesh(path);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(m.numCells(), 2u);
+  std::vector<double> apexZ;
+  for (uint64_t i = 0; i < 2; ++i)
+    for (uint32_t v : cellIds(m, CellType::Tet, i))
+      if (m.points[v].z > 0.0) apexZ.push_back(m.points[v].z);
+  std::sort(apexZ.begin(), apexZ.end());
+  EXPECT_EQ(apexZ, (std::vector<double>{3.0, 4.0}));
+  EXPECT_NE(err.find("skipped 1 ghost cells (vtkGhostType DUPLICATECELL"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("skipped 1 hidden cells (vtkGhostType HIDDENCELL)"), std::string::npos) << err;
 }
 
 TEST(VtuReader, Lz4AndLzmaAreRejectedByName) {

@@ -6,6 +6,7 @@
 // element-exact integration, early termination. Rungs on R in-process ranks holding interleaved
 // METIS clusters: two-pass lists (exact), 8-bit fragments, fixed K = 2, 4, 8 with drop and with
 // merge, and single-fragment (IceT-style) compositing.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -285,8 +286,23 @@ MeshResult measureCase(const AccuracyArgs& a, const std::string& spec, int w, in
   return out;
 }
 
+// The --meshes list, checked before any work: an empty list or entry would measure nothing and
+// still write a report that looks complete.
+std::vector<std::string> meshNames(const std::string& list) {
+  std::vector<std::string> names;
+  size_t b = 0;
+  while (true) {
+    const size_t e = std::min(list.find(',', b), list.size());
+    if (e == b) throw Error("--meshes: empty entry in '", list, "'");
+    names.push_back(list.substr(b, e - b));
+    if (e == list.size()) return names;
+    b = e + 1;
+  }
+}
+
 void runAccuracyBench(const AccuracyArgs& a) {
   if (a.runs < 1) throw Error("--runs: must be at least 1");
+  meshNames(a.meshes);
   const auto sizes = parseSizes("--size", a.size);
   if (sizes.size() != 1) throw Error("--size: give one size, not ", sizes.size());
   std::filesystem::create_directories(a.workDir);
@@ -295,20 +311,14 @@ void runAccuracyBench(const AccuracyArgs& a) {
   report["machine"] = machineJson();
   std::vector<PlotPanel> panels;
   std::string markdown = concat("Machine: ", machineLine(report["machine"]), "\n");
-  size_t b = 0;
-  while (b <= a.meshes.size()) {
-    size_t e = a.meshes.find(',', b);
-    if (e == std::string::npos) e = a.meshes.size();
-    if (e > b) {
-      MeshResult r = measureCase(a, a.meshes.substr(b, e - b), sizes[0].first, sizes[0].second);
-      report["meshes"].push_back(r.json);
-      panels.push_back(r.oneRank);
-      panels.push_back(r.ranks);
-      markdown +=
-          concat("\n### ", r.c.name, "\n\n", r.json["elements"].get<uint64_t>(),
-                 " elements, h = ", r.json["mean_element_size"].get<double>(), "\n\n", r.table);
-    }
-    b = e + 1;
+  for (const std::string& name : meshNames(a.meshes)) {
+    MeshResult r = measureCase(a, name, sizes[0].first, sizes[0].second);
+    report["meshes"].push_back(r.json);
+    panels.push_back(r.oneRank);
+    panels.push_back(r.ranks);
+    markdown +=
+        concat("\n### ", r.c.name, "\n\n", r.json["elements"].get<uint64_t>(),
+               " elements, h = ", r.json["mean_element_size"].get<double>(), "\n\n", r.table);
   }
   report["load_average_after"] = machineJson()["load_average"];
   if (!a.json.empty()) writeJsonFile(a.json, report);
