@@ -3,6 +3,9 @@
 #ifndef SM_TRANSFER_GLSL
 #define SM_TRANSFER_GLSL
 
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 // floor(x) as an integer, for 0 <= x < 2^23 (table coordinates): added to 2^23, a float's mantissa
 // holds it. Not uint(x): lavapipe converts a float to an integer one lane at a time (LLVM's
@@ -43,7 +46,11 @@ TfCache emptyTfCache() { return TfCache(kNoInterval, vec4(0.0), vec4(0.0)); }
 vec4 transferLookupCached(FrameParams fp, float s, inout TfCache cache) {
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
   uint i = min(floorIndex(x), fp.tfEntries - 1u);
-  if (i != cache.i) {
+  // Decided for the SIMD batch (a vote), and then every lane reads its entries: a lane-by-lane
+  // decision would put the reads under a mask that changes from sample to sample, and on lavapipe
+  // (no fast gathers on AMD CPUs) each masked read is eight branches that such a mask makes
+  // unpredictable. A lane that did not need new entries reads the same ones again.
+  if (subgroupAny(i != cache.i)) {
     uint w = 2u * min(i, fp.tfEntries - 2u);
     SmUint64s tf = SmUint64s(fp.transferFunction);
     cache.hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
@@ -275,21 +282,36 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
     return;
   }
   uint k = kNext != kNoSample ? kNext : firstSample(a, dt);
-  for (; sampleT(k, dt) < b; ++k) {
-    float t = sampleT(k, dt);
+  uint kEnd = max(firstSample(b, dt), k);
+  // One trip count for the SIMD batch (the most samples any of its lanes takes in its element), and
+  // a lane with fewer computes samples at b that it drops: the mask inside the loop stays the walk's
+  // instead of one that changes with each lane's count, which keeps the transfer function's reads
+  // predictable on lavapipe (transferLookupCached says why), and the bound is one reduction per
+  // element instead of a vote per sample. The samples kept, their order and values are the same.
+  uint n = kEnd - k;
+  uint trips = subgroupMax(n);
+  for (uint j = 0u; j < trips; ++j) {
+    bool more = j < n && acc.a < fp.earlyTermination;
+    float t = more ? sampleT(k, dt) : b;
+    vec3 kept = guess;
     float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
-    vec4 c = vec4(0.0);
-    if (!isnan(s) && !isinf(s)) {  // non-finite data renders transparent
-      c = transferLookupCached(fp, s, tfc);
-      if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
-    }
+    bool finite = !isnan(s) && !isinf(s);  // non-finite data renders transparent
+    vec4 c = transferLookupCached(fp, finite ? s : fp.tfLo, tfc);
+    if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
+    if (!finite) c = vec4(0.0);
     float alpha = 1.0 - exp(-c.a * fp.sigmaScale * dt);
-    acc.rgb += (1.0 - acc.a) * alpha * c.rgb;
-    acc.a += (1.0 - acc.a) * alpha;
-    samples += 1u;
-    if (acc.a >= fp.earlyTermination) return;
+    vec4 next;
+    next.rgb = acc.rgb + (1.0 - acc.a) * alpha * c.rgb;
+    next.a = acc.a + (1.0 - acc.a) * alpha;
+    if (more) {
+      acc = next;
+      samples += 1u;
+      k += 1u;
+    } else {
+      guess = kept;
+    }
   }
-  kNext = k;
+  kNext = kEnd;
 }
 
 #endif
