@@ -1,5 +1,6 @@
 #include "io_test_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,22 @@ using mesh::CellType;
 
 std::string fixturePath(const std::string& file) {
   return std::string(SHELLMARCH_IO_TEST_DATA) + "/" + file;
+}
+
+void expectGhostCellsSkipped(const std::string& path, std::vector<double> keptApexZ) {
+  testing::internal::CaptureStderr();
+  mesh::UnstructuredMesh m = readMesh(path);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(m.numCells(), keptApexZ.size());
+  std::vector<double> apexZ;
+  for (uint64_t i = 0; i < m.numCells(CellType::Tet); ++i)
+    for (uint32_t v : cellIds(m, CellType::Tet, i))
+      if (m.points[v].z > 0.0) apexZ.push_back(m.points[v].z);
+  std::sort(apexZ.begin(), apexZ.end());
+  EXPECT_EQ(apexZ, keptApexZ);
+  EXPECT_NE(err.find("skipped 1 ghost cells (vtkGhostType DUPLICATECELL"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("skipped 1 hidden cells (vtkGhostType HIDDENCELL)"), std::string::npos) << err;
 }
 
 std::vector<uint32_t> cellIds(const mesh::UnstructuredMesh& m, CellType t, uint64_t i) {

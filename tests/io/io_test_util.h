@@ -35,6 +35,11 @@ void expectAllPositive(const mesh::UnstructuredMesh& m);
 // Vertex ids of element `i` of type t.
 std::vector<uint32_t> cellIds(const mesh::UnstructuredMesh& m, mesh::CellType t, uint64_t i);
 
+// Reads `path`, four tetrahedra on the base (0,0,0), (1,0,0), (0,1,0) with apexes (0,0,1) to
+// (0,0,4) and a vtkGhostType cell array flagging one DUPLICATECELL and one HIDDENCELL: expects the
+// tetrahedra whose apexes are at `keptApexZ` and one warning for each skipped kind.
+void expectGhostCellsSkipped(const std::string& path, std::vector<double> keptApexZ);
+
 std::vector<uint8_t> readBytes(const std::string& path);
 void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes);
 void writeText(const std::string& path, const std::string& text);
