@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
-#include <system_error>
 #include <thread>
 
 namespace sm::comp {
@@ -146,7 +145,7 @@ void runLocalRanks(int ranks, const std::function<void(Communicator&)>& fn) {
   // A thread that cannot start (no memory for its stack, a thread limit) must end the ranks that
   // did start, which would otherwise wait for it in their first collective; and the started threads
   // must be joined before the error leaves, or their destructors terminate the process.
-  auto startFailed = [&](int r, const std::system_error& e) {
+  auto startFailed = [&](int r, const std::exception& e) {
     const std::string m = "local ranks: cannot start rank " + std::to_string(r) + " of " +
                           std::to_string(ranks) + ": " + e.what();
     group->abort(m);
@@ -167,7 +166,7 @@ void runLocalRanks(int ranks, const std::function<void(Communicator&)>& fn) {
   for (int r = 0; r < ranks; ++r) {
     try {
       threads.emplace_back(rankMain, r);
-    } catch (const std::system_error& e) {
+    } catch (const std::exception& e) {  // std::system_error, or std::bad_alloc for its state
       startFailed(r, e);
     }
   }

@@ -71,8 +71,13 @@ float sampleT(uint k, float dt) {
   return t;
 }
 
-// Smallest k with sampleT(k) >= t.
+// Smallest k with sampleT(k) >= t, at most kSampleLimit: render::finestStep refuses steps that
+// would put a data point further along a ray, so only a degenerate crossing (an infinite or absurd
+// t) reaches the limit, and it then ends there instead of counting forever.
+const uint kSampleLimit = 16777216u;
+
 uint firstSample(float t, float dt) {
+  t = min(t, sampleT(kSampleLimit, dt));
   uint k = uint(max(ceil(t / dt), 0.0));
   while (k > 0u && sampleT(k - 1u, dt) >= t) k -= 1u;
   while (sampleT(k, dt) < t) k += 1u;
@@ -290,8 +295,9 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
   // element instead of a vote per sample. The samples kept, their order and values are the same.
   uint n = kEnd - k;
   uint trips = subgroupMax(n);
+  bool done = false;  // early termination, decided after a sample as the walk decides it
   for (uint j = 0u; j < trips; ++j) {
-    bool more = j < n && acc.a < fp.earlyTermination;
+    bool more = j < n && !done;
     float t = more ? sampleT(k, dt) : b;
     vec3 kept = guess;
     float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
@@ -307,6 +313,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
       acc = next;
       samples += 1u;
       k += 1u;
+      done = acc.a >= fp.earlyTermination;
     } else {
       guess = kept;
     }

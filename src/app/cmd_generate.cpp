@@ -73,12 +73,14 @@ void validate(const GenerateArgs& a, const CLI::App& cmd) {
     throw Error("--cube-n: applies to --analytic cube-* meshes only");
   // Bounded like --elements, before anything is allocated: a cube too large for memory would
   // otherwise end in an "out of memory" that names no option.
-  const uint64_t perCube = a.analytic == "cube-hex"      ? 1
-                           : a.analytic == "cube-wedges" ? 2
-                           : a.analytic == "cube-tets5"  ? 5
-                                                         : 6;
+  const uint64_t perCube = a.analytic == "cube-hex"        ? 1
+                           : a.analytic == "cube-wedges"   ? 2
+                           : a.analytic == "cube-tets5"    ? 5
+                           : a.analytic == "cube-tets6"    ? 6
+                           : a.analytic == "cube-pyramids" ? 6
+                                                           : 0;  // unknown: analyticMesh says so
   const uint64_t cells = uint64_t(a.cubeN) * uint64_t(a.cubeN) * uint64_t(a.cubeN) * perCube;
-  if (a.analytic.rfind("cube-", 0) == 0 && cells > kMaxElements)
+  if (cells > kMaxElements)
     throw Error("--cube-n: ", a.cubeN, " makes ", cells, " cells of ", a.analytic, ", more than ",
                 kMaxElements);
 }

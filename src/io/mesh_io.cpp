@@ -19,12 +19,16 @@ Format formatOf(const std::string& path) {
               "' (shellmarch reads .vtu, .pvtu, legacy .vtk and .ugrid files)");
 }
 
+// Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
+void checkNoPieces(const std::string& name, const ReadOptions& options) {
+  if (!options.pieces.empty())
+    throw FileError(name, "has no pieces to choose from (only a .pvtu has pieces)");
+}
+
 }  // namespace
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
-  // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
-  if (!options.pieces.empty() && formatOf(path) != Format::Pvtu)
-    throw FileError(path, "has no pieces to choose from (only a .pvtu has pieces)");
+  if (formatOf(path) != Format::Pvtu) checkNoPieces(path, options);
   switch (formatOf(path)) {
     case Format::Vtu:
       return readVtu(FileBytes::open(path), path, options);
@@ -40,6 +44,7 @@ mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& opti
 
 mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
                                           const ReadOptions& options) {
+  if (formatOf(name) != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
   switch (formatOf(name)) {
     case Format::Vtu:
       return readVtu(FileBytes::copyOf(bytes), name, options);

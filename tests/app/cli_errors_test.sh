@@ -38,6 +38,10 @@ expect "ok_0.vtu: has no pieces to choose from" "$sm" info ok/ok_0.vtu --pieces 
 expect "--meshes: empty entry in ''" "$sm" bench accuracy --meshes '' --work-dir acc
 expect "--meshes: empty entry in 'demo,,lander'" "$sm" bench accuracy --meshes demo,,lander --work-dir acc
 if [ -e acc ]; then echo "FAIL: bench accuracy made its work folder for nothing"; fails=$((fails + 1)); fi
+# A piece that is itself a .pvtu index: named when render sizes the pieces, before any reading.
+printf '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="inner.vtu"/></PUnstructuredGrid></VTKFile>' >inner.vtu
+cp inner.vtu outer.pvtu
+expect "inner.vtu: is itself a .pvtu index" "$sm" render outer.pvtu --out nested.png
 mkdir -p dirout.pvtu
 expect "dirout.pvtu: cannot write" "$sm" generate --analytic cube-tets6 --cube-n 2 --out dirout.pvtu
 if [ -e dirout ]; then echo "FAIL: generate left pieces behind"; fails=$((fails + 1)); fi

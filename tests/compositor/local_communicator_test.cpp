@@ -1,6 +1,7 @@
 // In-process ranks, count dumps and comparison images: the host pieces the compositor and its
 // benchmark rely on.
 #include <gtest/gtest.h>
+#include <pthread.h>
 #include <sys/resource.h>
 
 #include <atomic>
@@ -112,8 +113,13 @@ TEST(CompositorLocalCommunicator, ARankThatCannotStartEndsTheOthersWithAnError) 
         uint64_t kib = 0;
         while (std::getline(status, line))
           if (line.rfind("VmSize:", 0) == 0) kib = std::stoull(line.substr(7));
-        cap.rlim_cur = (kib + 48 * 1024) * 1024;  // room for a few stacks, not 256
-        setrlimit(RLIMIT_AS, &cap);
+        // Room for a few threads' stacks, not for 256 of them.
+        pthread_attr_t attr;
+        size_t stack = 0;
+        if (pthread_getattr_default_np(&attr) != 0 || pthread_attr_getstacksize(&attr, &stack) != 0)
+          std::_Exit(6);
+        cap.rlim_cur = kib * 1024 + 6 * stack;
+        if (setrlimit(RLIMIT_AS, &cap) != 0) std::_Exit(7);
         try {
           runLocalRanks(256, [](Communicator& c) { c.barrier(); });
         } catch (const CommAborted&) {
