@@ -62,8 +62,7 @@ uint64_t declaredCells(const std::string& file) {
   std::string head(1 << 16, '\0');
   head.resize(std::fread(head.data(), 1, head.size(), f));
   std::fclose(f);
-  if (isParallelVtkXml({reinterpret_cast<const uint8_t*>(head.data()), head.size()}))
-    throw FileError(file, "is itself a .pvtu index, named as a piece: pieces must be .vtu files");
+  checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
   uint64_t cells = 0;
   bool found = false;
   for (size_t at = head.find("<Piece"); at != std::string::npos; at = head.find("<Piece", at + 6)) {

@@ -20,14 +20,15 @@ constexpr uint64_t kMaxBytes = uint64_t(1) << 60;
 
 }  // namespace
 
-bool isParallelVtkXml(std::span<const uint8_t> bytes) {
+void checkPieceIsNotAnIndex(std::span<const uint8_t> bytes, const std::string& source) {
   const std::string_view head(reinterpret_cast<const char*>(bytes.data()),
                               std::min<size_t>(bytes.size(), 4096));
   const size_t tag = head.find("<VTKFile");
-  if (tag == std::string_view::npos) return false;
+  if (tag == std::string_view::npos) return;
   const std::string_view attrs = head.substr(tag, head.find('>', tag) - tag);
-  return attrs.find("type=\"PUnstructuredGrid\"") != std::string_view::npos ||
-         attrs.find("type='PUnstructuredGrid'") != std::string_view::npos;
+  if (attrs.find("type=\"PUnstructuredGrid\"") != std::string_view::npos ||
+      attrs.find("type='PUnstructuredGrid'") != std::string_view::npos)
+    throw FileError(source, "is itself a .pvtu index, named as a piece: pieces must be .vtu files");
 }
 
 VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads)

@@ -16,9 +16,11 @@
 
 namespace sm::io {
 
-// Whether the <VTKFile> tag near the start of `bytes` says type="PUnstructuredGrid" (a .pvtu
-// index), without parsing the document.
-bool isParallelVtkXml(std::span<const uint8_t> bytes);
+// For a file named as a .pvtu's piece: throws a FileError naming `source` when the <VTKFile> tag
+// near the start of `bytes` says type="PUnstructuredGrid" (a .pvtu index), without parsing the
+// document. (VtuDocument's own advice for such a file, "give it the .pvtu extension", is for a
+// file the user named, not for a piece.)
+void checkPieceIsNotAnIndex(std::span<const uint8_t> bytes, const std::string& source);
 
 class VtuDocument {
  public:

@@ -220,10 +220,7 @@ class VtuReader {
 
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options, std::optional<int32_t> pieceCluster) {
-  // A piece is named by a .pvtu, so the document's advice for a parallel file named as a .vtu
-  // ("give it the .pvtu extension") would be wrong here.
-  if (pieceCluster && isParallelVtkXml(bytes.span()))
-    throw FileError(source, "is itself a .pvtu index, named as a piece: pieces must be .vtu files");
+  if (pieceCluster) checkPieceIsNotAnIndex(bytes.span(), source);
   VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads);
   return VtuReader(doc, options, pieceCluster).read();
 }
