@@ -39,11 +39,7 @@ mesh::UnstructuredMesh analyticMesh(const std::string& kind, int cubeN) {
   if (kind == "single-wedge") return gen::singleElement(CellType::Wedge);
   if (kind == "single-hex") return gen::singleElement(CellType::Hex);
   if (kind == "zoo") return gen::zoo();
-  if (kind == "cube-tets5") return gen::cube(gen::CubeSplit::Tets5, cubeN);
-  if (kind == "cube-tets6") return gen::cube(gen::CubeSplit::Tets6, cubeN);
-  if (kind == "cube-wedges") return gen::cube(gen::CubeSplit::Wedges, cubeN);
-  if (kind == "cube-pyramids") return gen::cube(gen::CubeSplit::Pyramids, cubeN);
-  if (kind == "cube-hex") return gen::cube(gen::CubeSplit::Hex, cubeN);
+  if (auto split = gen::cubeSplitNamed(kind)) return gen::cube(*split, cubeN);
   throw Error("--analytic: unknown mesh '", kind,
               "' (expected single-tet, single-pyramid, single-wedge, single-hex, zoo, cube-tets5, "
               "cube-tets6, cube-wedges, cube-pyramids or cube-hex)");
@@ -73,13 +69,9 @@ void validate(const GenerateArgs& a, const CLI::App& cmd) {
     throw Error("--cube-n: applies to --analytic cube-* meshes only");
   // Bounded like --elements, before anything is allocated: a cube too large for memory would
   // otherwise end in an "out of memory" that names no option.
-  const uint64_t perCube = a.analytic == "cube-hex"        ? 1
-                           : a.analytic == "cube-wedges"   ? 2
-                           : a.analytic == "cube-tets5"    ? 5
-                           : a.analytic == "cube-tets6"    ? 6
-                           : a.analytic == "cube-pyramids" ? 6
-                                                           : 0;  // unknown: analyticMesh says so
-  const uint64_t cells = uint64_t(a.cubeN) * uint64_t(a.cubeN) * uint64_t(a.cubeN) * perCube;
+  const auto split = gen::cubeSplitNamed(a.analytic);  // unknown names: analyticMesh says so
+  const uint64_t n = uint64_t(a.cubeN);
+  const uint64_t cells = split ? n * n * n * gen::cellsPerCube(*split) : 0;
   if (cells > kMaxElements)
     throw Error("--cube-n: ", a.cubeN, " makes ", cells, " cells of ", a.analytic, ", more than ",
                 kMaxElements);

@@ -148,6 +148,28 @@ mesh::UnstructuredMesh zoo() {
   return m.build("zoo");
 }
 
+std::optional<CubeSplit> cubeSplitNamed(const std::string& name) {
+  for (CubeSplit s :
+       {CubeSplit::Tets5, CubeSplit::Tets6, CubeSplit::Wedges, CubeSplit::Pyramids, CubeSplit::Hex})
+    if (name == splitName(s)) return s;
+  return std::nullopt;
+}
+
+uint64_t cellsPerCube(CubeSplit split) {
+  switch (split) {
+    case CubeSplit::Tets5:
+      return 5;
+    case CubeSplit::Tets6:
+    case CubeSplit::Pyramids:
+      return 6;
+    case CubeSplit::Wedges:
+      return 2;
+    case CubeSplit::Hex:
+      return 1;
+  }
+  return 0;
+}
+
 mesh::UnstructuredMesh cube(CubeSplit split, int n, double size) {
   if (n < 1) throw Error("cube: the number of cells per side must be at least 1, got ", n);
   if (!(size > 0.0)) throw Error("cube: the size must be positive, got ", size);

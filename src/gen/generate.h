@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "mesh/unstructured_mesh.h"
@@ -42,6 +43,10 @@ enum class CubeSplit { Tets5, Tets6, Wedges, Pyramids, Hex };
 // The cube [0, size]^3 as n^3 cells, each split as asked (Pyramids: six pyramids around the
 // cell centre; Wedges: two wedges).
 mesh::UnstructuredMesh cube(CubeSplit split, int n = 1, double size = 1.0);
+// The split a name such as "cube-tets5" stands for (the names `generate --analytic` takes), if any.
+std::optional<CubeSplit> cubeSplitNamed(const std::string& name);
+// Cells of one cube cell split that way (1, 2, 5 or 6).
+uint64_t cellsPerCube(CubeSplit split);
 
 // Adds analytic point fields over `steps` time steps, t in [0, 1]:
 //   "linear"  x + 2y + 3z (normalised to the bounds), the same every step;

@@ -28,8 +28,9 @@ void checkNoPieces(const std::string& name, const ReadOptions& options) {
 }  // namespace
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
-  if (formatOf(path) != Format::Pvtu) checkNoPieces(path, options);
-  switch (formatOf(path)) {
+  const Format format = formatOf(path);
+  if (format != Format::Pvtu) checkNoPieces(path, options);
+  switch (format) {
     case Format::Vtu:
       return readVtu(FileBytes::open(path), path, options);
     case Format::Pvtu:
@@ -44,8 +45,9 @@ mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& opti
 
 mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
                                           const ReadOptions& options) {
-  if (formatOf(name) != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
-  switch (formatOf(name)) {
+  const Format format = formatOf(name);
+  if (format != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
+  switch (format) {
     case Format::Vtu:
       return readVtu(FileBytes::copyOf(bytes), name, options);
     case Format::Pvtu:

@@ -203,9 +203,6 @@ class LegacyReader {
   template <class T, bool Swap>
   void addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>& offsets,
                    const std::vector<int64_t>& types, const std::vector<int64_t>& ghost);
-  bool skipGhost(const std::vector<int64_t>& ghost, uint64_t c) {
-    return ghostCells_.skip(ghost, c);
-  }
   void addFields(mesh::MeshBuilder& b);
   void addClusters(mesh::MeshBuilder& b);
 
@@ -235,7 +232,7 @@ void LegacyReader::addCellsOld(mesh::MeshBuilder& b, const std::vector<int64_t>&
     const int64_t n = at(pos);
     if (n < 0 || uint64_t(n) > size - pos - 1)
       throw FileError(src_, "CELLS: cell ", c, " claims ", n, " points, past the end of the list");
-    if (!skipGhost(ghost, c)) {
+    if (!ghostCells_.skip(ghost, c)) {
       const int64_t m = std::min(n, kMaxIds);
       for (int64_t k = 0; k < m; ++k) ids[k] = at(pos + 1 + k);
       b.addVtkCell(static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20)), {ids, size_t(m)},
@@ -252,7 +249,7 @@ void LegacyReader::addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>&
   int64_t ids[kMaxIds];
   for (uint64_t c = 0; c < numCells_; ++c) {
     const int64_t begin = offsets[c], n = std::min(offsets[c + 1] - begin, kMaxIds);
-    if (skipGhost(ghost, c)) continue;
+    if (ghostCells_.skip(ghost, c)) continue;
     for (int64_t i = 0; i < n; ++i) {
       T v = loadAs<T, Swap>(conn_.data + (begin + i) * sizeof(T));
       if constexpr (std::is_unsigned_v<T>)

@@ -80,6 +80,7 @@ TEST_P(CubeSplitTest, FillsTheCubeConformingly) {
     const double size = 2.0;
     auto m = cube(c.split, n, size);
     EXPECT_EQ(m.numCells(c.type), c.perCell * n * n * n);
+    EXPECT_EQ(cellsPerCube(c.split), c.perCell);
     EXPECT_EQ(m.numCells(), m.numCells(c.type));
     EXPECT_EQ(m.invertedFixed, 0u);
     EXPECT_NEAR(test::totalVolume(m), size * size * size, 1e-9);
@@ -107,6 +108,16 @@ TEST(AnalyticMesh, CubeIsDeterministicAndRejectsBadSizes) {
   EXPECT_EQ(a.cells, b.cells);
   EXPECT_THROW(cube(CubeSplit::Hex, 0), Error);
   EXPECT_THROW(cube(CubeSplit::Hex, 2, -1.0), Error);
+}
+
+TEST(AnalyticMesh, CubeSplitsByTheirGenerateNames) {
+  EXPECT_EQ(cubeSplitNamed("cube-tets5"), CubeSplit::Tets5);
+  EXPECT_EQ(cubeSplitNamed("cube-tets6"), CubeSplit::Tets6);
+  EXPECT_EQ(cubeSplitNamed("cube-wedges"), CubeSplit::Wedges);
+  EXPECT_EQ(cubeSplitNamed("cube-pyramids"), CubeSplit::Pyramids);
+  EXPECT_EQ(cubeSplitNamed("cube-hex"), CubeSplit::Hex);
+  EXPECT_EQ(cubeSplitNamed("cube-foo"), std::nullopt);
+  EXPECT_EQ(cubeSplitNamed("zoo"), std::nullopt);
 }
 
 }  // namespace

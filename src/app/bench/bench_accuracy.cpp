@@ -302,7 +302,7 @@ std::vector<std::string> meshNames(const std::string& list) {
 
 void runAccuracyBench(const AccuracyArgs& a) {
   if (a.runs < 1) throw Error("--runs: must be at least 1");
-  meshNames(a.meshes);
+  const std::vector<std::string> names = meshNames(a.meshes);
   const auto sizes = parseSizes("--size", a.size);
   if (sizes.size() != 1) throw Error("--size: give one size, not ", sizes.size());
   std::filesystem::create_directories(a.workDir);
@@ -311,7 +311,7 @@ void runAccuracyBench(const AccuracyArgs& a) {
   report["machine"] = machineJson();
   std::vector<PlotPanel> panels;
   std::string markdown = concat("Machine: ", machineLine(report["machine"]), "\n");
-  for (const std::string& name : meshNames(a.meshes)) {
+  for (const std::string& name : names) {
     MeshResult r = measureCase(a, name, sizes[0].first, sizes[0].second);
     report["meshes"].push_back(r.json);
     panels.push_back(r.oneRank);
