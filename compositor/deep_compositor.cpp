@@ -146,7 +146,12 @@ ListsView DeepCompositor::flatten(const ListsView& lists) {
                     0,
                     flatCounts_.address(),
                     pixels,
-                    lists.fixedK};
+                    lists.fixedK,
+                    0,
+                    0,
+                    {},
+                    0,
+                    0};
     flatten_.dispatchItems(cmd, pixels, 64, p);
   });
   return {&flatFragments_, &flatCounts_, nullptr, 1};

@@ -1,6 +1,7 @@
 // Deep compositing (the paper's section "Deep Compositing"): every rank writes a variable-length
 // list of fragments per pixel through the device interface (shaders/fragment_list.glsl); the
-// compositor exchanges the lists so that each rank owns a range of pixels, composites each pixel's
+// compositor exchanges the lists so that each rank owns a share of the pixels (interleaved by
+// default, CompositorOptions::ownership), composites each pixel's
 // fragments from all ranks in visibility order, and gathers the image on rank 0.
 //
 // Host use per frame:
@@ -17,6 +18,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "compositor/exchange_plan.h"
 #include "compositor/list_statistics.h"
 #include "compositor/prefix_sum.h"
 #include "fragment_types.h"
@@ -43,6 +45,9 @@ struct CompositorOptions {
   uint32_t counterBits = 0;  // 0: 2, 4, 8 or 32 from the longest list; else forced (must fit)
   uint32_t registerLists =
       8;  // non-empty lists per pixel merged in registers; more merge in memory
+  // Which rank composites which pixels (exchange_plan.h). Interleaved balances the compositing
+  // work whatever part of the image the data covers; Ranges is the paper's layout.
+  PixelOwnership ownership = PixelOwnership::Interleaved;
 };
 
 uint32_t fragmentBytes(Encoding e);
@@ -75,7 +80,7 @@ struct CompositeStats {
   uint64_t countBytesSent = 0;       // to other ranks (the share a rank keeps is not counted)
   uint64_t fragmentBytesSent = 0;    // to other ranks
   uint64_t bytesSent = 0;            // counts + fragments
-  uint64_t fragmentsComposited = 0;  // fragments of this rank's pixel range, from all ranks
+  uint64_t fragmentsComposited = 0;  // fragments of the pixels this rank owns, from all ranks
   double milliseconds = 0;           // all of composite() on this rank
   CompositeTimings timings;
   double fragmentsPerNonEmptyPixel() const {

@@ -45,7 +45,7 @@ DeepExchange::DeepExchange(const vk::Context& ctx, Communicator& comm, uint32_t 
     : ctx_(ctx),
       comm_(comm),
       pixels_(pixels),
-      ranges_(pixels, comm.size()),
+      ranges_(pixels, comm.size(), o.ownership),
       rank_(comm.rank()),
       ranks_(comm.size()),
       owned_(uint32_t(ranges_.count(comm.rank()))),
@@ -61,15 +61,19 @@ DeepExchange::DeepExchange(const vk::Context& ctx, Communicator& comm, uint32_t 
       vk::ComputePipeline(ctx, {"encode_counts", spv::encode_counts(), spec, sizeof(DcEncodePush)});
   decode_ =
       vk::ComputePipeline(ctx, {"decode_counts", spv::decode_counts(), spec, sizeof(DcDecodePush)});
+  if (interleaved())
+    permute_ = vk::ComputePipeline(
+        ctx, {"permute_counts", spv::permute_counts(), {}, sizeof(DcPermutePush)});
   composite_ = vk::ComputePipeline(ctx, {"composite_deep",
                                          spv::composite_deep(),
                                          {{0, std::max(o.registerLists, 1u)}, {101, enc}},
                                          sizeof(DcDeepPush)});
   const uint64_t R = uint64_t(ranks_), P = pixels, n = owned_;
   for (int r = 0; r < ranks_; ++r) {
-    sendIndices_.push_back(ranges_.begin(r));  // first pixel of destination r
+    sendIndices_.push_back(ranges_.begin(r));  // first position of destination r
     recvIndices_.push_back(uint64_t(r) * n);   // first list from source r
   }
+  if (interleaved()) grow(sendCounts_, P * 4, MemoryUse::Device, "send counts (position order)");
   grow(sendOffsets_, P * 4, MemoryUse::Device, "send offsets");
   grow(sendBoundaries_, R * 4, MemoryUse::Readback, "send boundaries");
   grow(sendWords_, (encodedWords(P, 8) + R) * 4, MemoryUse::Device, "packed counts");
@@ -121,7 +125,14 @@ void DeepExchange::prepare(const ListsView& lists, CompositeStats& stats) {
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     previousWorkBarrier(cmd);
     listStats_.record(cmd, lists.counts->address(), pixels_);
-    copyBuffer(cmd, *lists.counts, 0, sendOffsets_, 0, uint64_t(pixels_) * 4);
+    if (interleaved()) {
+      DcPermutePush p{lists.counts->address(), sendCounts_.address(), pixels_,
+                      uint32_t(ranks_),        ranges_.byRanks(),     ranges_.base(),
+                      ranges_.extra()};
+      permute_.dispatchItems(cmd, pixels_, 256 * 16, p);  // permute_counts.comp
+      vk::computeToTransferBarrier(cmd);
+    }
+    copyBuffer(cmd, positionCounts(lists), 0, sendOffsets_, 0, uint64_t(pixels_) * 4);
     vk::transferToComputeBarrier(cmd);
     scan_.record(cmd, sendOffsets_.address(), pixels_);
     vk::computeToTransferBarrier(cmd);
@@ -154,16 +165,22 @@ void DeepExchange::compactAndEncode(const ListsView& lists) {
                     sendOffsets_.address(),
                     0,
                     pixels_,
-                    lists.fixedK};
+                    lists.fixedK,
+                    uint32_t(interleaved()),
+                    uint32_t(ranks_),
+                    interleaved() ? ranges_.byRanks() : DcDivisor{},
+                    ranges_.base(),
+                    ranges_.extra()};
     compact_.dispatchItems(cmd, pixels_, 64, c);
+    const vk::Buffer& counts = positionCounts(lists);
     if (bits < 32) {
-      DcEncodePush e{lists.counts->address(), segments_.address(), sendWords_.address(),
-                     uint32_t(ranks_),        uint32_t(words),     bits};
+      DcEncodePush e{counts.address(), segments_.address(), sendWords_.address(),
+                     uint32_t(ranks_), uint32_t(words),     bits};
       encode_.dispatchItems(cmd, words, 64, e);
     }
     vk::computeToTransferBarrier(cmd);
     copyBuffer(cmd, sendFragments_, 0, sendFragmentStage_, 0, sendTotal_ * fragmentBytes_);
-    copyBuffer(cmd, bits < 32 ? sendWords_ : *lists.counts, 0, sendCountStage_, 0, words * 4);
+    copyBuffer(cmd, bits < 32 ? sendWords_ : counts, 0, sendCountStage_, 0, words * 4);
     hostReadBarrier(cmd);
   });
 }
@@ -236,18 +253,33 @@ void DeepExchange::compositeOwned() {
   });
 }
 
-// Step 5: rank 0 receives every rank's range straight into the image.
+const vk::Buffer& DeepExchange::positionCounts(const ListsView& lists) const {
+  return interleaved() ? sendCounts_ : *lists.counts;
+}
+
+// Step 5: rank 0 receives every rank's positions straight into the image (Ranges), or into
+// position order and then puts each pixel in its place (Interleaved).
 void DeepExchange::gather(std::vector<glm::vec4>& image) {
   std::vector<uint64_t> bytes, offsets;
   if (rank_ == 0) {
     image.resize(pixels_);
+    if (interleaved()) gathered_.resize(pixels_);
     for (int r = 0; r < ranks_; ++r) {
       bytes.push_back(ranges_.count(r) * sizeof(glm::vec4));
       offsets.push_back(ranges_.begin(r) * sizeof(glm::vec4));
     }
   }
-  comm_.gatherv(ownedImage_.mapped(), uint64_t(owned_) * sizeof(glm::vec4), image.data(), bytes,
-                offsets, 0);
+  glm::vec4* target = rank_ == 0 && interleaved() ? gathered_.data() : image.data();
+  comm_.gatherv(ownedImage_.mapped(), uint64_t(owned_) * sizeof(glm::vec4), target, bytes, offsets,
+                0);
+  if (rank_ != 0 || !interleaved()) return;
+  // Rank r's j-th position is pixel j R + r (PixelRanges::pixelAt): row j of R pixels takes
+  // the j-th entry of every rank, so the image is written in order from R read streams.
+  const uint64_t R = uint64_t(ranks_);
+  std::vector<const glm::vec4*> from(static_cast<size_t>(ranks_));
+  for (int r = 0; r < ranks_; ++r) from[size_t(r)] = gathered_.data() + ranges_.begin(r);
+  for (uint64_t j = 0, p = 0; p < pixels_; ++j)
+    for (size_t r = 0; r < R && p < pixels_; ++r, ++p) image[p] = from[r][j];
 }
 
 }  // namespace sm::comp

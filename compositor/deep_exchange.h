@@ -1,11 +1,12 @@
 // Deep compositing over several ranks: the paper's five steps.
 //   1) list statistics, prefix sum over this rank's counts, compaction of its fragments into one
-//      pixel-ordered send buffer (each destination's share contiguous);
+//      send buffer in exchange-position order (each destination's share contiguous; with
+//      interleaved ownership the counts are first permuted into that order);
 //   2) counts exchanged with alltoallv, packed at 2, 4, 8 or 32 bits from the longest list of any
 //      rank (encode/decode on the device);
 //   3) prefix sum over the received counts, second alltoallv moving the fragments;
 //   4) k-way merge by depth of each owned pixel's R lists (composite_deep.comp);
-//   5) owned pixels gathered on rank 0.
+//   5) owned pixels gathered on rank 0 (and put back in image order).
 // Transfers are host-staged: device buffers are copied to Readback buffers that the communicator
 // reads, and from Upload buffers it wrote. Every buffer grows and never shrinks.
 #pragma once
@@ -52,6 +53,9 @@ class DeepExchange {
   void compositeOwned();
   void gather(std::vector<glm::vec4>& image);
   void setCounterBits(uint32_t bits);
+  bool interleaved() const { return ranges_.ownership() == PixelOwnership::Interleaved; }
+  // This rank's counts in exchange-position order: the renderer's own buffer under Ranges.
+  const vk::Buffer& positionCounts(const ListsView& lists) const;
   void grow(vk::Buffer& b, uint64_t bytes, vk::MemoryUse use, const char* name);
 
   const vk::Context& ctx_;
@@ -65,15 +69,17 @@ class DeepExchange {
   PrefixSum& scan_;
   ListStatistics& listStats_;
   uint64_t& allocations_;
-  vk::ComputePipeline compact_, encode_, decode_, composite_;
+  vk::ComputePipeline compact_, encode_, decode_, composite_, permute_;
   CountExchange counts_;                             // plan for the current counter width
   std::vector<uint64_t> sendIndices_, recvIndices_;  // scan entries where each rank's share starts
   std::vector<uint64_t> sendBegin_, recvBegin_;
   uint64_t sendTotal_ = 0, recvTotal_ = 0;
   // Step 1-2 (sizes fixed by the image and rank count)
+  vk::Buffer sendCounts_;  // interleaved: this rank's counts in position order
   vk::Buffer sendOffsets_, sendBoundaries_, sendWords_, segments_, sendCountStage_;
   vk::Buffer recvCountStage_, recvWords_, recvCounts_, recvOffsets_, recvBoundaries_;
   vk::Buffer ownedImage_;
+  std::vector<glm::vec4> gathered_;  // rank 0, interleaved: the image in position order
   // Step 3 (grow with the fragment totals)
   vk::Buffer sendFragments_, sendFragmentStage_, recvFragmentStage_, recvFragments_;
 };

@@ -1,21 +1,80 @@
 #include "compositor/exchange_plan.h"
 
+#include <algorithm>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace sm::comp {
 
-PixelRanges::PixelRanges(uint64_t pixels, int ranks) : pixels_(pixels), ranks_(ranks) {
-  if (ranks < 1) throw std::invalid_argument("pixel ranges need at least one rank");
+const char* ownershipName(PixelOwnership o) {
+  return o == PixelOwnership::Interleaved ? "interleaved" : "ranges";
 }
 
-int PixelRanges::owner(uint64_t p) const {
+PixelOwnership parseOwnership(const std::string& name) {
+  if (name == "interleaved") return PixelOwnership::Interleaved;
+  if (name == "ranges") return PixelOwnership::Ranges;
+  throw std::invalid_argument("pixel ownership '" + name + "' (use interleaved or ranges)");
+}
+
+PixelRanges::PixelRanges(uint64_t pixels, int ranks, PixelOwnership ownership)
+    : pixels_(pixels), ranks_(ranks), ownership_(ownership) {
+  if (ranks < 1) throw std::invalid_argument("pixel ranges need at least one rank");
+  // The shaders index positions and pixels with 32 bits.
+  if (pixels > 0xFFFFFFFFull)
+    throw std::invalid_argument("an image of " + std::to_string(pixels) +
+                                " pixels (the compositor takes at most 2^32 - 1)");
+}
+
+DcDivisor dcDivisionMagic(uint32_t d) {
+  if (d < 2) throw std::invalid_argument("dcDivide needs a divisor of at least 2");
+  uint32_t l = 0;
+  while ((uint64_t(1) << l) < d) ++l;
+  const uint64_t m = (uint64_t(1) << 32) * ((uint64_t(1) << l) - d) / d + 1;
+  return {uint32_t(m), l - 1};
+}
+
+DcDivisor PixelRanges::byRanks() const {
+  return dcDivisionMagic(uint32_t(ranks_));
+}
+
+uint64_t PixelRanges::begin(int r) const {
+  const uint64_t R = uint64_t(ranks_);
+  if (ownership_ == PixelOwnership::Ranges) return uint64_t(r) * pixels_ / R;
+  return uint64_t(r) * (pixels_ / R) + std::min<uint64_t>(uint64_t(r), pixels_ % R);
+}
+
+int PixelRanges::owner(uint64_t q) const {
+  if (q >= pixels_)
+    throw std::out_of_range("position " + std::to_string(q) + " outside an image of " +
+                            std::to_string(pixels_));
+  const uint64_t R = uint64_t(ranks_);
+  // begin(d) <= q  <=>  d <= ((q + 1) R - 1) / P  (integer division)
+  if (ownership_ == PixelOwnership::Ranges) return int(((q + 1) * R - 1) / pixels_);
+  const uint64_t base = pixels_ / R, extra = pixels_ % R, wide = extra * (base + 1);
+  return int(q < wide ? q / (base + 1) : extra + (q - wide) / base);
+}
+
+uint64_t PixelRanges::pixelAt(uint64_t q) const {
+  const int r = owner(q);
+  if (ownership_ == PixelOwnership::Ranges) return q;
+  return (q - begin(r)) * uint64_t(ranks_) + uint64_t(r);
+}
+
+uint64_t PixelRanges::positionOf(uint64_t p) const {
   if (p >= pixels_)
     throw std::out_of_range("pixel " + std::to_string(p) + " outside an image of " +
                             std::to_string(pixels_));
-  // begin(d) <= p  <=>  d <= ((p + 1) R - 1) / P  (integer division)
-  return int(((p + 1) * uint64_t(ranks_) - 1) / pixels_);
+  if (ownership_ == PixelOwnership::Ranges || ranks_ == 1) return p;
+  return dcInterleavedPosition(uint32_t(p), uint32_t(ranks_), byRanks(), base(), extra());
+}
+
+int PixelRanges::ownerOfPixel(uint64_t p) const {
+  if (ownership_ == PixelOwnership::Ranges) return owner(p);
+  if (p >= pixels_)
+    throw std::out_of_range("pixel " + std::to_string(p) + " outside an image of " +
+                            std::to_string(pixels_));
+  return int(p % uint64_t(ranks_));
 }
 
 uint32_t counterBits(uint64_t maxListLength) {
@@ -94,8 +153,7 @@ std::vector<uint64_t> fragmentsPerDestination(const PixelRanges& ranges,
     throw std::invalid_argument("fragment counts: " + std::to_string(counts.size()) +
                                 " values for " + std::to_string(ranges.pixels()) + " pixels");
   std::vector<uint64_t> out(size_t(ranges.ranks()), 0);
-  for (int d = 0; d < ranges.ranks(); ++d)
-    for (uint64_t p = ranges.begin(d); p < ranges.end(d); ++p) out[size_t(d)] += counts[p];
+  for (uint64_t p = 0; p < counts.size(); ++p) out[size_t(ranges.ownerOfPixel(p))] += counts[p];
   return out;
 }
 

@@ -5,25 +5,52 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
+
+#include "exchange_types.h"
 
 namespace sm::comp {
 
-// Rank r composites pixels [begin(r), begin(r + 1)), begin(r) = floor(r P / R): contiguous ranges,
-// so each destination's share of a rank's pixel-ordered send buffer is contiguous too.
+// Which rank composites which pixels (exchange_types.h). Ranges: contiguous blocks of
+// the image, as the paper has it; a view whose data covers part of the image leaves the ranks
+// owning the rest with nothing to composite. Interleaved: rank r owns every R-th pixel, so every
+// rank's share of the covered pixels is about 1/R whatever the view.
+enum class PixelOwnership : uint32_t {
+  Interleaved = DC_OWNERSHIP_INTERLEAVED,
+  Ranges = DC_OWNERSHIP_RANGES,
+};
+const char* ownershipName(PixelOwnership o);
+PixelOwnership parseOwnership(const std::string& name);  // "interleaved" or "ranges"; throws
+
+// Rank r composites exchange positions [begin(r), end(r)): contiguous, so each destination's share
+// of a rank's position-ordered send buffer is contiguous too. Position q stands for pixel
+// pixelAt(q): q itself with Ranges (begin(r) = floor(r P / R)); with Interleaved, the pixels
+// p = r (mod R) in order (begin(r) = r floor(P / R) + min(r, P mod R)).
+// (m, l - 1) of dcDivide for 2 <= divisor < 2^32.
+DcDivisor dcDivisionMagic(uint32_t divisor);
+
 class PixelRanges {
  public:
-  PixelRanges(uint64_t pixels, int ranks);
+  PixelRanges(uint64_t pixels, int ranks, PixelOwnership ownership);
   uint64_t pixels() const { return pixels_; }
   int ranks() const { return ranks_; }
-  uint64_t begin(int r) const { return uint64_t(r) * pixels_ / uint64_t(ranks_); }
+  PixelOwnership ownership() const { return ownership_; }
+  uint64_t begin(int r) const;
   uint64_t end(int r) const { return begin(r + 1); }
   uint64_t count(int r) const { return end(r) - begin(r); }
-  int owner(uint64_t pixel) const;
+  int owner(uint64_t position) const;
+  uint64_t pixelAt(uint64_t position) const;
+  uint64_t positionOf(uint64_t pixel) const;
+  int ownerOfPixel(uint64_t pixel) const;
+  uint32_t base() const { return uint32_t(pixels_ / uint64_t(ranks_)); }   // floor(P / R)
+  uint32_t extra() const { return uint32_t(pixels_ % uint64_t(ranks_)); }  // P mod R
+  DcDivisor byRanks() const;                                               // for dcDivide; R >= 2
 
  private:
   uint64_t pixels_;
   int ranks_;
+  PixelOwnership ownership_;
 };
 
 // Bits per counter in the count exchange: the smallest of 2, 4, 8, 32 that holds the longest list
@@ -58,13 +85,14 @@ struct CountExchange {
 };
 CountExchange planCountExchange(const PixelRanges& ranges, int rank, uint32_t bits);
 
-// Step 3: sendBegin[d] is the first fragment (in the pixel-ordered send buffer) for rank d and
+// Step 3: sendBegin[d] is the first fragment (in the position-ordered send buffer) for rank d and
 // recvBegin[s] the first received fragment from rank s; both have ranks + 1 entries, the last the
 // total.
 Transfer planFragmentExchange(std::span<const uint64_t> sendBegin,
                               std::span<const uint64_t> recvBegin, uint32_t fragmentBytes);
 
-// Fragments rank-local per-pixel `counts` send to each destination (ranks entries).
+// Fragments rank-local per-pixel `counts` (in image order) send to each destination (ranks
+// entries).
 std::vector<uint64_t> fragmentsPerDestination(const PixelRanges& ranges,
                                               std::span<const uint32_t> counts);
 

@@ -25,8 +25,8 @@ double ReplayResult::mean(uint64_t ReplayRank::*field) const {
 }
 
 ReplayResult replayExchange(uint64_t pixels, int ranks, Encoding encoding, uint32_t forcedBits,
-                            const CountSource& source) {
-  const PixelRanges ranges(pixels, ranks);
+                            PixelOwnership ownership, const CountSource& source) {
+  const PixelRanges ranges(pixels, ranks, ownership);
   ReplayResult out;
   out.pixels = pixels;
   out.fragmentBytes = fragmentBytes(encoding);

@@ -17,7 +17,7 @@ struct ReplayRank {
   uint32_t longestList = 0;
   uint64_t countBytesSent = 0, fragmentBytesSent = 0;          // to other ranks, as CompositeStats
   uint64_t countBytesReceived = 0, fragmentBytesReceived = 0;  // from other ranks
-  uint64_t fragmentsComposited = 0;  // in this rank's pixel range, from all ranks
+  uint64_t fragmentsComposited = 0;  // of the pixels this rank owns, from all ranks
 };
 
 struct ReplayResult {
@@ -35,6 +35,6 @@ struct ReplayResult {
 using CountSource = std::function<void(int rank, std::vector<uint32_t>& counts)>;
 
 ReplayResult replayExchange(uint64_t pixels, int ranks, Encoding encoding, uint32_t forcedBits,
-                            const CountSource& source);
+                            PixelOwnership ownership, const CountSource& source);
 
 }  // namespace sm::comp

@@ -16,6 +16,7 @@ struct RunOptions {
   uint32_t depthBlocks = 12;             // synthetic partition: blocks along each axis
   std::string json;                      // output file ("" = none)
   std::string dumpCounts;                // write the per-rank counts of the largest image here
+  std::vector<std::string> ownerships = {"interleaved"};  // pixel ownerships to time, each a row
 };
 
 struct ReplayOptions {

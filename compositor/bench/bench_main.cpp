@@ -17,13 +17,15 @@ int sweepBenchmark(const SweepOptions& o, const std::string& self) {
   nlohmann::json rows = nlohmann::json::array();
   std::string sizes;
   for (int s : o.run.sizes) sizes += (sizes.empty() ? "" : ",") + std::to_string(s);
+  std::string ownerships;
+  for (const std::string& w : o.run.ownerships) ownerships += (ownerships.empty() ? "" : ",") + w;
   for (int n = 1; n <= o.maxRanks; ++n) {
     const std::string part =
         o.run.json.empty() ? "/tmp/shellmarch_bench_compositor.json" : o.run.json + ".part";
     const std::string cmd = o.mpiexec + " -n " + std::to_string(n) + " --oversubscribe " + self +
                             " run --sizes " + sizes + " --frames " + std::to_string(o.run.frames) +
-                            " --depth-blocks " + std::to_string(o.run.depthBlocks) + " --json " +
-                            part + " > /dev/null";
+                            " --depth-blocks " + std::to_string(o.run.depthBlocks) +
+                            " --ownerships " + ownerships + " --json " + part + " > /dev/null";
     std::fprintf(stderr, "%s\n", cmd.c_str());
     if (std::system(cmd.c_str()) != 0) {
       std::fprintf(stderr, "sweep: %d ranks failed\n", n);
@@ -55,6 +57,10 @@ int main(int argc, char** argv) {
     c->add_option("--depth-blocks", run.depthBlocks, "synthetic partition blocks per axis")
         ->check(CLI::PositiveNumber);
     c->add_option("--json", run.json, "write the rows as JSON");
+    c->add_option("--ownerships", run.ownerships,
+                  "pixel ownerships to time: interleaved, ranges or both")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"interleaved", "ranges"}));
   };
   CLI::App* runCmd = app.add_subcommand("run", "one rank count (under mpiexec)");
   addRunOptions(runCmd);

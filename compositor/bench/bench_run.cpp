@@ -52,6 +52,7 @@ nlohmann::json measure(Communicator& comm, const vk::Context& ctx, const HostLis
   return {{"ranks", comm.size()},
           {"size", size},
           {"encoding", o.encoding == Encoding::Float ? "float" : "rgba8"},
+          {"ownership", ownershipName(o.ownership)},
           {"counterBits", s.counterBits},
           {"fragments", fragments},
           {"countBytes", comm.allreduceSum(s.countBytesSent)},
@@ -76,6 +77,8 @@ void runAll(MpiCommunicator& comm, const RunOptions& o) {
   vk::Context ctx(co);
   nlohmann::json rows = nlohmann::json::array();
   const int R = comm.size();
+  std::vector<PixelOwnership> ownerships;
+  for (const std::string& name : o.ownerships) ownerships.push_back(parseOwnership(name));
   for (int size : o.sizes) {
     SyntheticScene scene(size, size, R, o.depthBlocks);
     HostLists lists = scene.lists(comm.rank());
@@ -86,10 +89,14 @@ void runAll(MpiCommunicator& comm, const RunOptions& o) {
       for (uint32_t bits : {2u, 4u, 8u, 32u}) {
         if (R > 1 && bits < 32 && longest >= (uint64_t(1) << bits)) continue;  // cannot hold
         if (R == 1 && bits != 32) continue;  // no exchange: one row per encoding
-        CompositorOptions co2;
-        co2.encoding = e;
-        co2.counterBits = R > 1 ? bits : 0;
-        rows.push_back(measure(comm, ctx, lists, size, co2, o.frames));
+        for (PixelOwnership own : ownerships) {
+          if (R == 1 && own != ownerships.front()) continue;  // one rank owns every pixel
+          CompositorOptions co2;
+          co2.encoding = e;
+          co2.counterBits = R > 1 ? bits : 0;
+          co2.ownership = own;
+          rows.push_back(measure(comm, ctx, lists, size, co2, o.frames));
+        }
       }
     }
     if (!o.dumpCounts.empty() && size == o.sizes.back()) {
@@ -110,21 +117,22 @@ void runAll(MpiCommunicator& comm, const RunOptions& o) {
 }  // namespace
 
 void printRunTable(const nlohmann::json& rows) {
-  std::printf("%5s %5s %5s %4s %10s %10s %11s %9s %8s | %7s %7s %7s %7s %7s %6s\n", "ranks", "size",
-              "frag", "bits", "fragments", "count B", "fragment B", "MB/frame", "ms", "prep",
-              "counts", "frags", "comp", "gather", "imbal");
+  std::printf("%5s %5s %5s %4s %11s %10s %10s %11s %9s %8s | %7s %7s %7s %7s %7s %6s\n", "ranks",
+              "size", "frag", "bits", "ownership", "fragments", "count B", "fragment B", "MB/frame",
+              "ms", "prep", "counts", "frags", "comp", "gather", "imbal");
   for (const auto& r : rows) {
     const double mb = (double(r["countBytes"]) + double(r["fragmentBytes"])) / 1e6;
     const uint32_t bits = r["counterBits"];
     std::printf(
-        "%5d %5d %5s %4s %10llu %10llu %11llu %9.2f %8.1f | %7.1f %7.1f %7.1f %7.1f %7.1f "
+        "%5d %5d %5s %4s %11s %10llu %10llu %11llu %9.2f %8.1f | %7.1f %7.1f %7.1f %7.1f %7.1f "
         "%6.2f\n",
         int(r["ranks"]), int(r["size"]), std::string(r["encoding"]).c_str(),
-        bits ? std::to_string(bits).c_str() : "-", (unsigned long long)r["fragments"],
-        (unsigned long long)r["countBytes"], (unsigned long long)r["fragmentBytes"], mb,
-        double(r["ms"]), double(r["prepareMs"]), double(r["countExchangeMs"]),
-        double(r["fragmentExchangeMs"]), double(r["compositeMs"]), double(r["gatherMs"]),
-        double(r["compositeImbalance"]));
+        bits ? std::to_string(bits).c_str() : "-",
+        int(r["ranks"]) > 1 ? std::string(r["ownership"]).c_str() : "-",
+        (unsigned long long)r["fragments"], (unsigned long long)r["countBytes"],
+        (unsigned long long)r["fragmentBytes"], mb, double(r["ms"]), double(r["prepareMs"]),
+        double(r["countExchangeMs"]), double(r["fragmentExchangeMs"]), double(r["compositeMs"]),
+        double(r["gatherMs"]), double(r["compositeImbalance"]));
   }
 }
 

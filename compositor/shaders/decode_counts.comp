@@ -1,6 +1,7 @@
 #version 460
 // Step 2, after the exchange: unpacks the counters received from every source into 32-bit counts,
-// source-major (counts[s * perSource + j] is source s's list length for this rank's pixel j).
+// source-major (counts[s * perSource + j] is source s's list length for this rank's position j:
+// the j-th pixel it owns).
 #extension GL_GOOGLE_include_directive : require
 #include "dc_common.glsl"
 

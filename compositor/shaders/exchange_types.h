@@ -10,6 +10,48 @@
 namespace sm::comp {
 #endif
 
+// Which rank composites which pixels. The exchange works on positions: rank r composites the
+// contiguous positions [begin(r), end(r)) (compositor/exchange_plan.h), so that each destination's
+// share of a send buffer is contiguous. Ranges: positions are pixels, rank r composites pixels
+// [floor(r P / R), floor((r + 1) P / R)) (the paper's layout). Interleaved: rank r composites the
+// pixels p = r (mod R), the j-th of them (p = j R + r) at position begin(r) + j, where the first
+// P mod R ranks hold one pixel more (begin(r) = r floor(P / R) + min(r, P mod R)); whatever part
+// of the image the data covers, every rank gets its share of it (IceT interlaces images for the
+// same reason).
+DC_CONST uint DC_OWNERSHIP_RANGES = 0u;
+DC_CONST uint DC_OWNERSHIP_INTERLEAVED = 1u;
+
+// Division by the rank count without a divide: a vector division is a loop of eight scalar ones
+// on lavapipe, which made the passes that map pixels to positions cost as much as the rest of step
+// 1. floor(n / d) = (t + ((n - t) >> 1)) >> (l - 1), t = mulhi(n, m), for every 32-bit n, with
+// l = ceil(log2 d) and m = floor(2^32 (2^l - d) / d) + 1 (Granlund and Montgomery 1994; Hacker's
+// Delight 10-8). d >= 2; dcDivisionMagic computes (m, l - 1) on the host.
+struct DcDivisor {
+  uint magic;
+  uint shift;
+};
+
+DC_FN uint dcMulHi(uint a, uint b) {
+#ifdef __cplusplus
+  return uint((uint64_t(a) * uint64_t(b)) >> 32u);
+#else
+  uint hi, lo;
+  umulExtended(a, b, hi, lo);
+  return hi;
+#endif
+}
+
+DC_FN uint dcDivide(uint n, DcDivisor d) {
+  uint t = dcMulHi(n, d.magic);
+  return (t + ((n - t) >> 1u)) >> d.shift;
+}
+
+// Interleaved: the position of pixel p, with base = floor(P / R) and extra = P mod R given.
+DC_FN uint dcInterleavedPosition(uint p, uint ranks, DcDivisor byRanks, uint base, uint extra) {
+  uint j = dcDivide(p, byRanks), r = p - j * ranks;
+  return r * base + (r < extra ? r : extra) + j;
+}
+
 // composite_local.comp (one rank): lists start at offsets[p] (two-pass) or p * fixedK (offsets ==
 // 0); image holds one premultiplied vec4 per pixel.
 struct DcLocalPush {
@@ -29,8 +71,9 @@ struct DcStatsPush {
 };
 
 // compact.comp / flatten.comp: a pixel's list starts at srcOffsets[p] (two-pass) or p * fixedK
-// (srcOffsets == 0). compact copies it to dst at dstOffsets[p]; flatten composites it into one
-// fragment dst[p] and writes dstCounts[p] = 0 or 1.
+// (srcOffsets == 0). compact copies pixel p's list to dst at dstOffsets[q], q its position (p
+// itself, or with interleaved != 0 dcInterleavedPosition with ranks, base, extra); flatten
+// composites it into one fragment dst[p] and writes dstCounts[p] = 0 or 1.
 struct DcCompactPush {
   uint64_t src;
   uint64_t counts;
@@ -40,10 +83,26 @@ struct DcCompactPush {
   uint64_t dstCounts;   // flatten only
   uint pixels;
   uint fixedK;
+  uint interleaved;  // compact only, as the next four
+  uint ranks;
+  DcDivisor byRanks;
+  uint base;
+  uint extra;
 };
 
-// encode_counts.comp: segments holds (first pixel, first word) of each destination, ranks + 1
-// pairs; one invocation packs one output word.
+// permute_counts.comp: dst[dcInterleavedPosition(p)] = src[p], the counts in position order.
+struct DcPermutePush {
+  uint64_t src;
+  uint64_t dst;
+  uint pixels;
+  uint ranks;
+  DcDivisor byRanks;
+  uint base;
+  uint extra;
+};
+
+// encode_counts.comp: segments holds (first position, first word) of each destination, ranks + 1
+// pairs; counts are in position order; one invocation packs one output word.
 struct DcEncodePush {
   uint64_t counts;
   uint64_t segments;
@@ -93,7 +152,8 @@ struct DcWritePush {
 static_assert(sizeof(DcLocalPush) == 40);
 static_assert(sizeof(DcWritePush) == 72);
 static_assert(sizeof(DcStatsPush) == 24);
-static_assert(sizeof(DcCompactPush) == 56);
+static_assert(sizeof(DcCompactPush) == 80);
+static_assert(sizeof(DcPermutePush) == 40);
 static_assert(sizeof(DcEncodePush) == 40);
 static_assert(sizeof(DcDecodePush) == 32);
 static_assert(sizeof(DcDeepPush) == 40);

@@ -9,8 +9,10 @@ namespace sm::comp {
 using vec4 = glm::vec4;
 using uint = uint32_t;
 #define DC_CONST inline constexpr
+#define DC_FN constexpr inline
 #else
 #define DC_CONST const
+#define DC_FN
 #endif
 
 DC_CONST uint DC_TWO_PASS = 0u;

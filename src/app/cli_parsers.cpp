@@ -99,6 +99,14 @@ comp::Encoding parseEncoding(const std::string& value) {
   throw Error("--encoding: '", value, "' (use float or rgba8)");
 }
 
+comp::PixelOwnership parsePixelOwnership(const std::string& value) {
+  try {
+    return comp::parseOwnership(value);
+  } catch (const std::invalid_argument& e) {
+    throw Error("--pixel-ownership: ", e.what());
+  }
+}
+
 comp::CompositeMethod parseCompositeMethod(const std::string& value) {
   if (value == "deep") return comp::CompositeMethod::Deep;
   if (value == "single") return comp::CompositeMethod::SingleFragment;

@@ -22,6 +22,7 @@ int64_t parseCount(const std::string& option, const std::string& value, const ch
 double parsePositive(const std::string& option, const std::string& value);  // > 0, finite
 comp::ListMode parseListMode(const std::string& value);                // two-pass | drop | merge
 comp::Encoding parseEncoding(const std::string& value);                // float | rgba8
+comp::PixelOwnership parsePixelOwnership(const std::string& value);    // interleaved | ranges
 comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
 render::Integration parseIntegration(const std::string& value);        // sampled | exact
 render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"

@@ -32,6 +32,7 @@ StatsReport::StatsReport(const RenderJob& job, Collectives& coll) : job_(job), c
   json_["ranks"] = coll.size();
   json_["width"] = job.width;
   json_["height"] = job.height;
+  json_["pixel_ownership"] = comp::ownershipName(job.lists.ownership);
   json_["frames"] = nlohmann::json::array();
 }
 
@@ -109,6 +110,7 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
                        {"count_bytes_sent", ranks[r].countBytesSent},
                        {"fragment_bytes_sent", ranks[r].fragmentBytesSent},
                        {"counter_bits", ranks[r].counterBits},
+                       {"fragments_composited", ranks[r].fragmentsComposited},
                        {"composite_ms", ranks[r].milliseconds}});
   fr["ranks"] = perRank;
   json_["frames"].push_back(fr);
@@ -166,7 +168,7 @@ void StatsReport::printFrame(const nlohmann::json& fr) const {
       std::printf(
           "    rank %llu: %llu fragments (%.2f per non-empty pixel), sent %llu bytes (counts %llu "
           "at %u bits, "
-          "fragments %llu), compositing %.1f ms\n",
+          "fragments %llu), composited %llu fragments in %.1f ms\n",
           (unsigned long long)r["rank"].get<uint64_t>(),
           (unsigned long long)r["fragments"].get<uint64_t>(),
           r["fragments_per_nonempty_pixel"].get<double>(),
@@ -174,6 +176,7 @@ void StatsReport::printFrame(const nlohmann::json& fr) const {
           (unsigned long long)r["count_bytes_sent"].get<uint64_t>(),
           r["counter_bits"].get<uint32_t>(),
           (unsigned long long)r["fragment_bytes_sent"].get<uint64_t>(),
+          (unsigned long long)r["fragments_composited"].get<uint64_t>(),
           r["composite_ms"].get<double>());
 }
 

@@ -48,6 +48,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                   "Fragment lists: two-pass (exact), drop or merge (fixed K)");
   cmd->add_option("--k", t["--k"], "Slots per pixel for fixed-length lists (default 8)");
   cmd->add_option("--encoding", t["--encoding"], "Fragment encoding: float or rgba8");
+  cmd->add_option("--pixel-ownership", t["--pixel-ownership"],
+                  "Which rank composites which pixels: interleaved (default, balanced whatever "
+                  "the view) or ranges (contiguous blocks, the paper's layout)");
   cmd->add_flag("--plain", raw.plain, "Keep elements uncompacted (no XOR compaction)");
   cmd->add_option("--device", job.device, "Vulkan device index or name substring");
   cmd->add_option("--cache-dir", job.cacheDir, "Folder for the preparation cache (off by default)");
@@ -67,6 +70,8 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.background = glm::vec3(parseVec3("--background", get("--background")));
   if (!get("--lists").empty()) job.lists.mode = parseListMode(get("--lists"));
   if (!get("--encoding").empty()) job.lists.encoding = parseEncoding(get("--encoding"));
+  if (!get("--pixel-ownership").empty())
+    job.lists.ownership = parsePixelOwnership(get("--pixel-ownership"));
   if (!get("--integration").empty()) job.integration = parseIntegration(get("--integration"));
   if (!get("--shading-params").empty())
     job.shading = parseShading("--shading-params", get("--shading-params"));

@@ -47,6 +47,7 @@ expect "dirout.pvtu: cannot write" "$sm" generate --analytic cube-tets6 --cube-n
 if [ -e dirout ]; then echo "FAIL: generate left pieces behind"; fails=$((fails + 1)); fi
 expect "--range" "$sm" render ok.pvtu --range 2,1 --out a.png
 expect "--lists" "$sm" render ok.pvtu --lists maybe --out a.png
+expect "--pixel-ownership" "$sm" render ok.pvtu --pixel-ownership tiles --out a.png
 expect "--integration" "$sm" render ok.pvtu --integration perfect --out a.png
 expect "(--k)" "$sm" render ok.pvtu --lists merge --k 9 --size 16384x16384 --out a.png
 expect "--shading-params" "$sm" render ok.pvtu --shading-params 0.3,0.7,-1,20 --out a.png

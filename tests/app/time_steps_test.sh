@@ -47,6 +47,9 @@ for n in 1 3; do
   json $s "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1}"
   json $s "j['sequence']['scalar_uploads'] == {'min': 4, 'max': 4}"
 done
+# Every fragment is composited by exactly one rank, whichever owns its pixel.
+json seq3.json "j['pixel_ownership'] == 'interleaved'"
+json seq3.json "all(sum(r['fragments_composited'] for r in f['ranks']) == sum(r['fragments'] for r in f['ranks']) > 0 for f in j['frames'])"
 
 # Several runs without prefetching: fps per run, images written once and unchanged.
 mpi 3 "$sm" render steps.pvtu "${view[@]}" --time all --repeat 2 --no-prefetch --stats-json rep.json \

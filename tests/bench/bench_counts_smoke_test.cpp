@@ -27,7 +27,8 @@ TEST(BenchCounts, TinyMeshDumpsAndReplaysRealCounts) {
   std::vector<std::string> keys = {"machine.cpu", "device", "rows.1.ranks"};
   for (const char* k :
        {"fragments", "counter_bits", "count_bytes_sent.max", "fragment_bytes_sent_float.mean",
-        "fragment_bytes_sent_rgba8.max", "render_imbalance", "composite_imbalance", "dump"})
+        "fragment_bytes_sent_rgba8.max", "render_imbalance", "composite_imbalance",
+        "composite_imbalance_ranges", "dump"})
     keys.push_back(std::string("rows.1.") + k);
   ASSERT_EQ(missingKeys(j, keys), std::vector<std::string>{});
   const nlohmann::json& one = j["rows"][0];
@@ -39,6 +40,10 @@ TEST(BenchCounts, TinyMeshDumpsAndReplaysRealCounts) {
   EXPECT_EQ(three["ranks"].get<int>(), 3);
   EXPECT_GT(three["fragment_bytes_sent_float"]["mean"].get<double>(), 0.0);
   EXPECT_GE(three["render_imbalance"].get<double>(), 1.0);
+  // The tiny mesh covers the middle rows of the image: contiguous ranges give that band to one
+  // rank, interleaved ownership to all three alike (1.93 and 1.01 when written).
+  EXPECT_LT(three["composite_imbalance"].get<double>(), 1.1);
+  EXPECT_GT(three["composite_imbalance_ranges"].get<double>(), 1.5);
   // 8 bytes of magic, 4 header words, then one count per pixel and rank.
   const std::string dump = three["dump"].get<std::string>();
   EXPECT_EQ(std::filesystem::file_size(dump), 24u + 3u * 24u * 24u * 4u);

@@ -61,9 +61,12 @@ void checkSingleFragment(Communicator* comm, const vk::Context& ctx) {
 
 void checkStatistics(Communicator* comm, const vk::Context& ctx) {
   const int R = ranksOf(comm), me = rankOf(comm);
-  for (Encoding e : {Encoding::Float, Encoding::Rgba8}) {
+  for (auto [e, own] : {std::pair{Encoding::Float, PixelOwnership::Interleaved},
+                        {Encoding::Rgba8, PixelOwnership::Interleaved},
+                        {Encoding::Rgba8, PixelOwnership::Ranges}}) {
     CompositorOptions o;
     o.encoding = e;
+    o.ownership = own;
     WorldSpec s;
     s.ranks = R;
     s.seed = 5;
@@ -91,14 +94,15 @@ void checkStatistics(Communicator* comm, const vk::Context& ctx) {
       EXPECT_TRUE(all.empty() && heat.empty()) << "gathered on rank 0 only";
       continue;
     }
-    ReplayResult replay = replayExchange(w.pixels(), R, e, 0, [&](int r, std::vector<uint32_t>& c) {
-      c = stored[size_t(r)].counts;
-    });
+    ReplayResult replay =
+        replayExchange(w.pixels(), R, e, 0, o.ownership,
+                       [&](int r, std::vector<uint32_t>& c) { c = stored[size_t(r)].counts; });
     ASSERT_EQ(all.size(), size_t(R));
     ASSERT_EQ(heat.size(), size_t(R));
     for (int r = 0; r < R; ++r) {
       const ReplayRank& want = replay.ranks[size_t(r)];
-      EXPECT_EQ(all[size_t(r)].fragments, want.fragments) << "rank " << r;
+      EXPECT_EQ(all[size_t(r)].fragments, want.fragments)
+          << "rank " << r << ", " << ownershipName(own);
       EXPECT_EQ(all[size_t(r)].countBytesSent, want.countBytesSent) << "rank " << r;
       EXPECT_EQ(all[size_t(r)].fragmentBytesSent, want.fragmentBytesSent) << "rank " << r;
       EXPECT_EQ(all[size_t(r)].fragmentsComposited, want.fragmentsComposited) << "rank " << r;

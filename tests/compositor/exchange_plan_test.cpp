@@ -2,6 +2,7 @@
 // accounting of both exchanges, MPI chunk planning for sizes beyond `int`, and the replay.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <climits>
 #include <numeric>
 
@@ -34,7 +35,7 @@ TEST(CompositorCounterBits, ForcedWidthMustBeAnEncodingThatHoldsTheLongestList) 
 
 TEST(CompositorPixelRanges, EveryPixelHasExactlyOneOwnerInContiguousRanges) {
   for (auto [pixels, ranks] : {std::pair<uint64_t, int>{1, 4}, {3, 4}, {221, 3}, {65536, 7}}) {
-    PixelRanges r(pixels, ranks);
+    PixelRanges r(pixels, ranks, PixelOwnership::Ranges);
     EXPECT_EQ(r.begin(0), 0u);
     EXPECT_EQ(r.end(ranks - 1), pixels);
     for (int d = 0; d < ranks; ++d) {
@@ -43,12 +44,62 @@ TEST(CompositorPixelRanges, EveryPixelHasExactlyOneOwnerInContiguousRanges) {
       for (uint64_t p = r.begin(d); p < r.end(d); ++p) ASSERT_EQ(r.owner(p), d) << p;
     }
   }
-  EXPECT_THROW(PixelRanges(10, 0), std::invalid_argument);
-  EXPECT_THROW(PixelRanges(10, 2).owner(10), std::out_of_range);
+  EXPECT_THROW(PixelRanges(10, 0, PixelOwnership::Ranges), std::invalid_argument);
+  EXPECT_THROW(PixelRanges(10, 2, PixelOwnership::Ranges).owner(10), std::out_of_range);
+}
+
+// Interleaved: rank d's positions stand for the pixels p = d (mod R) in increasing order, every
+// pixel at exactly one position, and the position's owner is the pixel's owner.
+TEST(CompositorPixelRanges, InterleavedPositionsAreAPermutationDealingPixelsRoundRobin) {
+  for (auto [pixels, ranks] :
+       {std::pair<uint64_t, int>{1, 4}, {3, 4}, {4, 4}, {221, 3}, {1000, 7}, {65536, 7}}) {
+    PixelRanges r(pixels, ranks, PixelOwnership::Interleaved);
+    EXPECT_EQ(r.begin(0), 0u);
+    EXPECT_EQ(r.end(ranks - 1), pixels);
+    std::vector<int> seen(pixels, 0);
+    for (int d = 0; d < ranks; ++d) {
+      // The first P mod R ranks hold one pixel more.
+      EXPECT_EQ(r.count(d), pixels / uint64_t(ranks) + (uint64_t(d) < pixels % uint64_t(ranks)));
+      for (uint64_t q = r.begin(d); q < r.end(d); ++q) {
+        ASSERT_EQ(r.owner(q), d) << q;
+        const uint64_t p = r.pixelAt(q);
+        ASSERT_EQ(p, (q - r.begin(d)) * uint64_t(ranks) + uint64_t(d)) << q;
+        ASSERT_LT(p, pixels);
+        ASSERT_EQ(r.ownerOfPixel(p), d) << p;
+        ASSERT_EQ(r.positionOf(p), q) << p;
+        ++seen[p];
+      }
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), int64_t(pixels)) << "a permutation";
+  }
+  PixelRanges ranges(221, 3, PixelOwnership::Ranges);
+  for (uint64_t q = 0; q < 221; ++q) {
+    EXPECT_EQ(ranges.pixelAt(q), q);
+    EXPECT_EQ(ranges.positionOf(q), q);
+    EXPECT_EQ(ranges.ownerOfPixel(q), ranges.owner(q));
+  }
+  // The largest image the compositor takes: positions and pixels round-trip at both ends.
+  for (int ranks : {2, 3, 7, 2999}) {
+    PixelRanges big(0xFFFFFFFFull, ranks, PixelOwnership::Interleaved);
+    const uint64_t R = uint64_t(ranks), last = big.pixels() - 1;
+    for (uint64_t p : std::vector<uint64_t>{0, 1, R, last - R, last - 1, last}) {
+      const uint64_t q = big.positionOf(p);
+      ASSERT_LT(q, big.pixels()) << p;
+      EXPECT_EQ(big.pixelAt(q), p) << p << " on " << ranks << " ranks";
+      EXPECT_EQ(big.owner(q), big.ownerOfPixel(p)) << p;
+    }
+  }
+  EXPECT_THROW(PixelRanges(10, 3, PixelOwnership::Interleaved).pixelAt(10), std::out_of_range);
+  EXPECT_THROW(PixelRanges(10, 3, PixelOwnership::Interleaved).ownerOfPixel(10), std::out_of_range);
+  EXPECT_THROW(PixelRanges(10, 3, PixelOwnership::Interleaved).positionOf(10), std::out_of_range);
+  EXPECT_EQ(parseOwnership("interleaved"), PixelOwnership::Interleaved);
+  EXPECT_EQ(parseOwnership("ranges"), PixelOwnership::Ranges);
+  EXPECT_STREQ(ownershipName(PixelOwnership::Interleaved), "interleaved");
+  EXPECT_THROW(parseOwnership("tiles"), std::invalid_argument);
 }
 
 TEST(CompositorCountExchange, SendsOnlyTheBytesThatHoldCountersFromWordAlignedShares) {
-  PixelRanges r(221, 3);  // 73, 74, 74 pixels
+  PixelRanges r(221, 3, PixelOwnership::Ranges);  // 73, 74, 74 pixels
   CountExchange c = planCountExchange(r, 1, 2);
   EXPECT_EQ(c.sendWordBegin, (std::vector<uint64_t>{0, 5, 10, 15}));  // 16 counters per word
   EXPECT_EQ(c.transfer.sendBytes, (std::vector<uint64_t>{19, 19, 19}));
@@ -65,7 +116,7 @@ TEST(CompositorCountExchange, SendsOnlyTheBytesThatHoldCountersFromWordAlignedSh
 TEST(CompositorCountExchange, WhatEachRankSendsIsWhatItsPeerExpects) {
   for (uint32_t bits : {2u, 4u, 8u, 32u}) {
     for (auto [pixels, ranks] : {std::pair<uint64_t, int>{1, 4}, {17 * 13, 4}, {1000, 7}}) {
-      PixelRanges r(pixels, ranks);
+      PixelRanges r(pixels, ranks, PixelOwnership::Ranges);
       std::vector<CountExchange> plans;
       for (int s = 0; s < ranks; ++s) plans.push_back(planCountExchange(r, s, bits));
       for (int s = 0; s < ranks; ++s)
@@ -105,7 +156,7 @@ TEST(CompositorMpiChunks, TransfersBeyondIntSplitIntoPiecesThatFit) {
 TEST(CompositorReplay, PredictsBytesAndLoadFromCounts) {
   // 2 ranks, 4 pixels: rank 0 owns pixels 0-1, rank 1 owns 2-3.
   std::vector<std::vector<uint32_t>> counts = {{1, 0, 2, 3}, {0, 4, 0, 1}};
-  ReplayResult r = replayExchange(4, 2, Encoding::Rgba8, 0,
+  ReplayResult r = replayExchange(4, 2, Encoding::Rgba8, 0, PixelOwnership::Ranges,
                                   [&](int rank, std::vector<uint32_t>& c) { c = counts[rank]; });
   EXPECT_EQ(r.counterBits, 4u);  // longest list 4
   EXPECT_EQ(r.ranks[0].fragments, 6u);
@@ -117,6 +168,61 @@ TEST(CompositorReplay, PredictsBytesAndLoadFromCounts) {
   EXPECT_EQ(r.ranks[0].countBytesSent, 1u);  // two 4-bit counters
   EXPECT_EQ(r.ranks[1].fragmentBytesReceived, 5u * 8);
   EXPECT_DOUBLE_EQ(r.imbalance(&ReplayRank::fragmentsComposited), 6.0 / 5.5);
+
+  // Interleaved, the same counts: rank 0 owns pixels 0 and 2, rank 1 pixels 1 and 3.
+  ReplayResult i = replayExchange(4, 2, Encoding::Rgba8, 0, PixelOwnership::Interleaved,
+                                  [&](int rank, std::vector<uint32_t>& c) { c = counts[rank]; });
+  EXPECT_EQ(i.ranks[0].fragmentBytesSent, 3u * 8);  // pixel 3 goes to rank 1
+  EXPECT_EQ(i.ranks[1].fragmentBytesSent, 0u);      // pixels 0 and 2 are empty on rank 1
+  EXPECT_EQ(i.ranks[0].fragmentsComposited, 3u);
+  EXPECT_EQ(i.ranks[1].fragmentsComposited, 8u);
+  EXPECT_EQ(i.ranks[0].countBytesSent, 1u);
+}
+
+// dcDivide's multiply-and-shift equals the division for every divisor a rank count can be and
+// the numerators where rounding would show first: around multiples of the divisor, and the top of
+// the 32-bit range.
+TEST(CompositorDivision, MagicNumbersDivideExactly) {
+  std::vector<uint32_t> divisors;
+  for (uint32_t d = 2; d < 3000; ++d) divisors.push_back(d);
+  for (uint32_t d : {4095u, 4096u, 4097u, 65535u, 65536u, 65537u, 1000003u, 0x7FFFFFFFu,
+                     0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu})
+    divisors.push_back(d);
+  for (uint32_t d : divisors) {
+    const DcDivisor m = dcDivisionMagic(d);
+    auto check = [&](uint64_t n) {
+      if (n > 0xFFFFFFFFull) return;
+      ASSERT_EQ(dcDivide(uint32_t(n), m), uint32_t(n / d)) << n << " / " << d;
+    };
+    const uint64_t top = 0xFFFFFFFFull / d;
+    for (uint64_t k : std::vector<uint64_t>{0, 1, 2, 1000, top - 1, top})
+      for (uint64_t n : {k * d, k * d + 1, k * d + d - 1}) check(n);
+    for (uint64_t n = 0xFFFFFFFFull - 300; n <= 0xFFFFFFFFull; ++n) check(n);
+  }
+  EXPECT_THROW(dcDivisionMagic(1), std::invalid_argument);
+  EXPECT_THROW(dcDivisionMagic(0), std::invalid_argument);
+}
+
+// The case interleaving exists for: the data covers one band of the image (a view off to one
+// side), so contiguous ranges leave most ranks with nothing to composite.
+TEST(CompositorReplay, InterleavedOwnershipBalancesAViewCoveringPartOfTheImage) {
+  const uint64_t width = 64, height = 48;
+  auto covered = [&](int rank, std::vector<uint32_t>& c) {
+    for (uint64_t p = 0; p < c.size(); ++p)
+      c[p] = p / width < height / 4 ? 1u + uint32_t(rank) : 0u;
+  };
+  ReplayResult ranges =
+      replayExchange(width * height, 4, Encoding::Float, 0, PixelOwnership::Ranges, covered);
+  ReplayResult inter =
+      replayExchange(width * height, 4, Encoding::Float, 0, PixelOwnership::Interleaved, covered);
+  EXPECT_DOUBLE_EQ(ranges.imbalance(&ReplayRank::fragmentsComposited), 4.0) << "rank 0 owns it all";
+  EXPECT_DOUBLE_EQ(inter.imbalance(&ReplayRank::fragmentsComposited), 1.0);
+  uint64_t a = 0, b = 0;
+  for (int r = 0; r < 4; ++r) {
+    a += ranges.ranks[size_t(r)].fragmentsComposited;
+    b += inter.ranks[size_t(r)].fragmentsComposited;
+  }
+  EXPECT_EQ(a, b) << "the same fragments, composited elsewhere";
 }
 
 }  // namespace
