@@ -6,7 +6,12 @@ namespace sm::comp {
 // True when a process manager (OpenMPI, MPICH/PMI, PMIx) launched this process.
 bool launchedByMpi();
 
-// MPI_Init_thread on construction (funneled), MPI_Finalize on destruction.
+// Throws CommError unless MPI's `provided` thread level is at least MPI_THREAD_FUNNELED: the
+// program runs other threads (lavapipe's, the scalar prefetch) while the main thread calls MPI,
+// which an MPI that gives MPI_THREAD_SINGLE does not allow.
+void checkThreadLevel(int provided);
+
+// MPI_Init_thread on construction (funneled, checked), MPI_Finalize on destruction.
 class MpiSession {
  public:
   MpiSession();

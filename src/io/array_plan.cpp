@@ -94,7 +94,10 @@ StepName splitStepName(std::string_view name) {
   const char* b = name.data() + at + 2;
   const char* e = name.data() + name.size();
   auto [p, ec] = std::from_chars(b, e, step);
-  if (ec != std::errc() || p != e || *b == '+' || *b == '-') return {std::string(name), {}};
+  // Steps are written in plain decimal (vtu_writer, FORMATS.md): "p@t01" is a name, not step 1 of
+  // "p", or it and "p@t1" would both claim that step.
+  if (ec != std::errc() || p != e || *b == '+' || *b == '-' || (*b == '0' && e - b > 1))
+    return {std::string(name), {}};
   return {std::string(name.substr(0, at)), step};
 }
 

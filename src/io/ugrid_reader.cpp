@@ -250,8 +250,12 @@ class UgridReader {
       size_t dot = middle.rfind('.');
       if (dot != std::string::npos && dot + 1 < middle.size() &&
           std::all_of(middle.begin() + dot + 1, middle.end(),
-                      [](unsigned char c) { return std::isdigit(c); }))
-        middle = middle.substr(0, dot) + "@t" + middle.substr(dot + 1);
+                      [](unsigned char c) { return std::isdigit(c); })) {
+        // Solvers often zero-pad step numbers in file names (wing.p.0001.f32): step 1.
+        const size_t digits = middle.find_first_not_of('0', dot + 1);
+        middle = middle.substr(0, dot) + "@t" +
+                 (digits == std::string::npos ? std::string("0") : middle.substr(digits));
+      }
       found.push_back({{middle, 1, false}, joinPath(dir, name)});
     }
     std::sort(found.begin(), found.end(),

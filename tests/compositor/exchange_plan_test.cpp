@@ -8,6 +8,7 @@
 
 #include "compositor/exchange_plan.h"
 #include "compositor/mpi/mpi_communicator.h"
+#include "compositor/mpi/mpi_session.h"
 #include "compositor/replay.h"
 
 namespace sm::comp {
@@ -223,6 +224,19 @@ TEST(CompositorReplay, InterleavedOwnershipBalancesAViewCoveringPartOfTheImage) 
     b += inter.ranks[size_t(r)].fragmentsComposited;
   }
   EXPECT_EQ(a, b) << "the same fragments, composited elsewhere";
+}
+
+// An MPI that cannot have other threads running beside its calls is refused with a message (the
+// MPI here gives what is asked, so the check is tested on its own).
+TEST(CompositorMpiSession, ThreadLevelBelowFunneledIsRefused) {
+  EXPECT_NO_THROW(checkThreadLevel(MPI_THREAD_FUNNELED));
+  EXPECT_NO_THROW(checkThreadLevel(MPI_THREAD_MULTIPLE));
+  try {
+    checkThreadLevel(MPI_THREAD_SINGLE);
+    FAIL() << "MPI_THREAD_SINGLE accepted";
+  } catch (const CommError& e) {
+    EXPECT_NE(std::string(e.what()).find("MPI_THREAD_FUNNELED"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

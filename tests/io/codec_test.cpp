@@ -91,7 +91,9 @@ TEST(TextScan, NumbersAsWritersWriteThem) {
 TEST(ArrayPlan, TimeStepNames) {
   EXPECT_EQ(splitStepName("p@t3").base, "p");
   EXPECT_EQ(splitStepName("p@t3").step, 3u);
-  for (const char* plain : {"p", "p@t", "p@tx", "@t1", "p@t-1", "p@t+1", "p@t1x"})
+  EXPECT_EQ(splitStepName("p@t0").step, 0u);
+  EXPECT_EQ(splitStepName("p@t10").step, 10u);
+  for (const char* plain : {"p", "p@t", "p@tx", "@t1", "p@t-1", "p@t+1", "p@t1x", "p@t01", "p@t00"})
     EXPECT_FALSE(splitStepName(plain).step) << plain;
 }
 

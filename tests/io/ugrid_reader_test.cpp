@@ -221,6 +221,17 @@ TEST(UgridReader, FieldsFromSideFiles) {
   writeFloats(dir + "/wing.temp.2.f32", t1);
   msg = fileErrorOf([&] { readMesh(dir + "/wing.lb8.ugrid"); });
   EXPECT_NE(msg.find("time step 1"), std::string::npos) << msg;
+  // Zero-padded step numbers, as solvers write them, are the same steps.
+  std::filesystem::remove(dir + "/wing.temp.2.f32");
+  std::filesystem::remove(dir + "/wing.temp.0.f32");
+  writeFloats(dir + "/wing.temp.0000.f32", t0);
+  writeFloats(dir + "/wing.temp.0001.f32", t1);
+  m = readMesh(dir + "/wing.lb8.ugrid");
+  ft = m.findField("temp");
+  ASSERT_TRUE(ft);
+  ASSERT_EQ(ft->numSteps(), 2u);
+  EXPECT_EQ(ft->steps[0], t0);
+  EXPECT_EQ(ft->steps[1], t1);
 }
 
 TEST(UgridReader, ClusterArraysDoNotExist) {
