@@ -1,7 +1,9 @@
 #include "compositor/deep_exchange.h"
 
 #include <algorithm>
+#include <cstring>
 
+#include "compositor/count_codec.h"
 #include "compositor/deep_compositor.h"
 #include "compositor/device_util.h"
 #include "compositor_shaders.h"
@@ -185,12 +187,62 @@ void DeepExchange::compactAndEncode(const ListsView& lists) {
   });
 }
 
+// Step 2's transfers: each destination's packed words as they are, or their zero-run code where
+// that is smaller (count_codec.h), after one header per pair saying which and how long. Received
+// codes are expanded into the receive stage, where the device decodes every source's words.
+void DeepExchange::transferCounts(CompositeStats& stats) {
+  const size_t R = size_t(ranks_);
+  const Transfer& t = counts_.transfer;
+  const auto* words = static_cast<const uint32_t*>(sendCountStage_.mapped());
+  std::vector<uint64_t> sendBytes(R), sendOffsets(R), recvBytes(R), recvOffsets(R);
+  countSend_.clear();
+  countSend_.reserve(1);
+  headerSend_.resize(R);
+  for (size_t d = 0; d < R; ++d) {
+    const std::span<const uint32_t> share(words + counts_.sendWordBegin[d],
+                                          counts_.sendWordBegin[d + 1] - counts_.sendWordBegin[d]);
+    sendOffsets[d] = countSend_.size() * 4;
+    appendZeroRuns(share, countSend_);
+    const CountPayload p = choosePayload(t.sendBytes[d], countSend_.size() - sendOffsets[d] / 4);
+    if (!p.zeroRuns) {
+      countSend_.resize(sendOffsets[d] / 4);
+      countSend_.insert(countSend_.end(), share.begin(), share.end());
+    }
+    sendBytes[d] = p.bytes;
+    headerSend_[d] = payloadHeader(p);
+  }
+  headerRecv_.resize(R);
+  const std::vector<uint64_t> eight(R, 8);
+  std::vector<uint64_t> slots(R);
+  for (size_t r = 0; r < R; ++r) slots[r] = r * 8;
+  comm_.alltoallv(headerSend_.data(), eight, slots, headerRecv_.data(), eight, slots);
+  uint64_t words32 = 0;
+  for (size_t s = 0; s < R; ++s) {
+    recvBytes[s] = headerRecv_[s] & ~kZeroRunFlag;
+    recvOffsets[s] = words32 * 4;
+    words32 += (recvBytes[s] + 3) / 4;
+  }
+  countRecv_.resize(std::max<uint64_t>(words32, 1));  // data() of an empty vector may be null
+  comm_.alltoallv(countSend_.data(), sendBytes, sendOffsets, countRecv_.data(), recvBytes,
+                  recvOffsets);
+  auto* stage = static_cast<uint8_t*>(recvCountStage_.mapped());
+  for (size_t s = 0; s < R; ++s) {
+    uint8_t* to = stage + s * counts_.wordsPerSource * 4;
+    const uint32_t* from = countRecv_.data() + recvOffsets[s] / 4;
+    if (headerRecv_[s] & kZeroRunFlag)
+      expandZeroRuns({from, recvBytes[s] / 4},
+                     {reinterpret_cast<uint32_t*>(to), counts_.wordsPerSource});
+    else if (recvBytes[s] > 0)
+      std::memcpy(to, from, recvBytes[s]);
+  }
+  stats.countBytesSent = 0;
+  for (size_t d = 0; d < R; ++d)
+    if (int(d) != rank_) stats.countBytesSent += 8 + sendBytes[d];
+}
+
 // Step 2 and the prefix sum of step 3: after it, recvBegin_ says where each source's fragments go.
 void DeepExchange::exchangeCounts(CompositeStats& stats) {
-  const Transfer& t = counts_.transfer;
-  comm_.alltoallv(sendCountStage_.mapped(), t.sendBytes, t.sendOffsets, recvCountStage_.mapped(),
-                  t.recvBytes, t.recvOffsets);
-  stats.countBytesSent = t.sentToOthers(rank_);
+  transferCounts(stats);
   const uint32_t bits = counts_.bits;
   const uint32_t received = uint32_t(ranks_) * owned_;
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {

@@ -3,7 +3,8 @@
 //      send buffer in exchange-position order (each destination's share contiguous; with
 //      interleaved ownership the counts are first permuted into that order);
 //   2) counts exchanged with alltoallv, packed at 2, 4, 8 or 32 bits from the longest list of any
-//      rank (encode/decode on the device);
+//      rank (encode/decode on the device), each destination's words sent as they are or as runs of
+//      zero words where that is smaller (count_codec.h; a first alltoallv sends the sizes);
 //   3) prefix sum over the received counts, second alltoallv moving the fragments;
 //   4) k-way merge by depth of each owned pixel's R lists (composite_deep.comp);
 //   5) owned pixels gathered on rank 0 (and put back in image order).
@@ -49,6 +50,7 @@ class DeepExchange {
   void prepare(const ListsView& lists, CompositeStats& stats);
   void compactAndEncode(const ListsView& lists);
   void exchangeCounts(CompositeStats& stats);
+  void transferCounts(CompositeStats& stats);
   void exchangeFragments(CompositeStats& stats);
   void compositeOwned();
   void gather(std::vector<glm::vec4>& image);
@@ -80,6 +82,9 @@ class DeepExchange {
   vk::Buffer recvCountStage_, recvWords_, recvCounts_, recvOffsets_, recvBoundaries_;
   vk::Buffer ownedImage_;
   std::vector<glm::vec4> gathered_;  // rank 0, interleaved: the image in position order
+  // Step 2 on the host: headers and payloads (count_codec.h) sent and received.
+  std::vector<uint64_t> headerSend_, headerRecv_;
+  std::vector<uint32_t> countSend_, countRecv_;
   // Step 3 (grow with the fragment totals)
   vk::Buffer sendFragments_, sendFragmentStage_, recvFragmentStage_, recvFragments_;
 };

@@ -2,6 +2,7 @@
 // in-memory merge.
 #include <gtest/gtest.h>
 
+#include "compositor/exchange_plan.h"
 #include "compositor/image_compare.h"
 #include "compositor/replay.h"
 #include "compositor_cases.h"
@@ -61,20 +62,31 @@ void checkSingleFragment(Communicator* comm, const vk::Context& ctx) {
 
 void checkStatistics(Communicator* comm, const vk::Context& ctx) {
   const int R = ranksOf(comm), me = rankOf(comm);
-  for (auto [e, own] : {std::pair{Encoding::Float, PixelOwnership::Interleaved},
-                        {Encoding::Rgba8, PixelOwnership::Interleaved},
-                        {Encoding::Rgba8, PixelOwnership::Ranges}}) {
+  struct Case {
+    Encoding e;
+    PixelOwnership own;
+    bool sparse;  // few pixels with fragments: zero-run coded counts
+  };
+  for (auto [e, own, sparse] : {Case{Encoding::Float, PixelOwnership::Interleaved, false},
+                                Case{Encoding::Rgba8, PixelOwnership::Interleaved, false},
+                                Case{Encoding::Rgba8, PixelOwnership::Ranges, false},
+                                Case{Encoding::Float, PixelOwnership::Interleaved, true}}) {
     CompositorOptions o;
     o.encoding = e;
     o.ownership = own;
     WorldSpec s;
     s.ranks = R;
     s.seed = 5;
+    if (sparse) {
+      s.width = 96;
+      s.height = 64;
+      s.emptyFraction = 0.98;
+    }
     World w = makeWorld(s);
     std::vector<HostLists> stored;
     for (const HostLists& r : w.raw) stored.push_back(storedLists(r, o));
     RankRig rig(comm, ctx, w.width, w.height, o);
-    rig.run(w);
+    const std::vector<glm::vec4> image = rig.run(w);
     const CompositeStats& st = rig.compositor().stats();
     uint64_t fragments = 0, nonEmpty = 0;
     uint32_t longest = 0;
@@ -113,6 +125,15 @@ void checkStatistics(Communicator* comm, const vk::Context& ctx) {
       EXPECT_EQ(all[0].bytesSent, 0u) << "one rank exchanges nothing";
     } else {
       EXPECT_GT(all[0].fragmentBytesSent, 0u);
+    }
+    if (sparse && R > 1) {
+      // Zero runs instead of a counter per pixel: well below the packed counters' bytes.
+      const PixelRanges ranges(w.pixels(), R, own);
+      for (int r = 0; r < R; ++r)
+        EXPECT_LT(all[size_t(r)].countBytesSent * 2,
+                  planCountExchange(ranges, r, replay.counterBits).transfer.sentToOthers(r))
+            << "rank " << r;
+      expectImageNear(image, deepReference(w, o), kTolerance, "sparse world, zero-run counts");
     }
     uint64_t summed = 0, composited = 0;
     for (uint32_t c : sumCounts(heat)) summed += c;

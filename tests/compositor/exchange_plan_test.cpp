@@ -6,6 +6,7 @@
 #include <climits>
 #include <numeric>
 
+#include "compositor/count_codec.h"
 #include "compositor/exchange_plan.h"
 #include "compositor/mpi/mpi_communicator.h"
 #include "compositor/mpi/mpi_session.h"
@@ -166,7 +167,7 @@ TEST(CompositorReplay, PredictsBytesAndLoadFromCounts) {
   EXPECT_EQ(r.ranks[1].fragmentBytesSent, 4u * 8);
   EXPECT_EQ(r.ranks[0].fragmentsComposited, 5u);
   EXPECT_EQ(r.ranks[1].fragmentsComposited, 6u);
-  EXPECT_EQ(r.ranks[0].countBytesSent, 1u);  // two 4-bit counters
+  EXPECT_EQ(r.ranks[0].countBytesSent, 8u + 1u);  // a header, then two 4-bit counters
   EXPECT_EQ(r.ranks[1].fragmentBytesReceived, 5u * 8);
   EXPECT_DOUBLE_EQ(r.imbalance(&ReplayRank::fragmentsComposited), 6.0 / 5.5);
 
@@ -177,7 +178,7 @@ TEST(CompositorReplay, PredictsBytesAndLoadFromCounts) {
   EXPECT_EQ(i.ranks[1].fragmentBytesSent, 0u);      // pixels 0 and 2 are empty on rank 1
   EXPECT_EQ(i.ranks[0].fragmentsComposited, 3u);
   EXPECT_EQ(i.ranks[1].fragmentsComposited, 8u);
-  EXPECT_EQ(i.ranks[0].countBytesSent, 1u);
+  EXPECT_EQ(i.ranks[0].countBytesSent, 8u + 1u);
 }
 
 // dcDivide's multiply-and-shift equals the division for every divisor a rank count can be and
@@ -202,6 +203,63 @@ TEST(CompositorDivision, MagicNumbersDivideExactly) {
   }
   EXPECT_THROW(dcDivisionMagic(1), std::invalid_argument);
   EXPECT_THROW(dcDivisionMagic(0), std::invalid_argument);
+}
+
+TEST(CompositorCountCodec, ZeroRunsRoundTripAndNeverLoseAWord) {
+  const std::vector<std::vector<uint32_t>> cases = {{},
+                                                    {0},
+                                                    {7},
+                                                    {0, 0, 0, 5},
+                                                    {5, 0, 0, 0},
+                                                    {5, 0, 6, 0},
+                                                    {0, 5, 0, 0, 6, 7, 0, 0, 0, 8},
+                                                    std::vector<uint32_t>(1000, 0),
+                                                    std::vector<uint32_t>(1000, 9)};
+  for (const auto& words : cases) {
+    std::vector<uint32_t> code;
+    appendZeroRuns(words, code);
+    std::vector<uint32_t> back(words.size(), 0xDEADBEEFu);
+    expandZeroRuns(code, back);
+    EXPECT_EQ(back, words) << words.size() << " words";
+    // Never longer than the words plus one record per literal run.
+    EXPECT_LE(code.size(), words.size() + 2 * (words.size() / 2 + 1));
+  }
+  std::vector<uint32_t> code;
+  appendZeroRuns(std::vector<uint32_t>(1000, 0), code);
+  EXPECT_EQ(code, (std::vector<uint32_t>{1000, 0})) << "an empty share is one record";
+  // A code for the wrong number of words is refused, whichever way it is wrong.
+  std::vector<uint32_t> four(4);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{3, 0}, four), CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{5, 0}, four), CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{2, 2, 1}, four), CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{4, 0, 9}, four), CommError);
+  // Packing is encode_counts.comp's: counter i at bits (i % per word) * bits of word i / per word.
+  EXPECT_EQ(packCounterWords(std::vector<uint32_t>{1, 2, 3}, 4), (std::vector<uint32_t>{0x321u}));
+  EXPECT_EQ(packCounterWords(std::vector<uint32_t>(17, 1), 2),
+            (std::vector<uint32_t>{0x55555555u, 0x1u}));
+  EXPECT_EQ(packCounterWords(std::vector<uint32_t>{300, 7}, 32), (std::vector<uint32_t>{300, 7}));
+  EXPECT_EQ(choosePayload(19, 2).bytes, 8u);
+  EXPECT_TRUE(choosePayload(19, 2).zeroRuns);
+  EXPECT_FALSE(choosePayload(7, 2).zeroRuns) << "dense when the code is not smaller";
+}
+
+// A rank whose data covers a few pixels sends each destination a header and one short record
+// instead of a counter for every pixel the destination owns.
+TEST(CompositorReplay, SparseCoverageSendsZeroRunsInsteadOfEveryCounter) {
+  const uint64_t pixels = 256 * 256;
+  auto few = [&](int rank, std::vector<uint32_t>& c) {
+    for (uint64_t p = 0; p < c.size(); ++p) c[p] = p % 997 == uint64_t(rank) ? 3u : 0u;
+  };
+  for (PixelOwnership own : {PixelOwnership::Interleaved, PixelOwnership::Ranges}) {
+    ReplayResult r = replayExchange(pixels, 8, Encoding::Float, 0, own, few);
+    ASSERT_EQ(r.counterBits, 2u);
+    const PixelRanges ranges(pixels, 8, own);
+    for (int s = 0; s < 8; ++s) {
+      const uint64_t dense = planCountExchange(ranges, s, 2).transfer.sentToOthers(s);
+      EXPECT_LT(r.ranks[size_t(s)].countBytesSent * 4, dense)
+          << ownershipName(own) << " rank " << s;
+    }
+  }
 }
 
 // The case interleaving exists for: the data covers one band of the image (a view off to one

@@ -1,0 +1,58 @@
+#include "compositor/count_codec.h"
+
+#include <string>
+
+#include "compositor/communicator.h"
+
+namespace sm::comp {
+
+std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits) {
+  if (bits == 32) return {counters.begin(), counters.end()};
+  const uint64_t perWord = 32 / bits;
+  std::vector<uint32_t> words((counters.size() + perWord - 1) / perWord, 0u);
+  for (uint64_t i = 0; i < counters.size(); ++i)
+    words[i / perWord] |= counters[i] << ((i % perWord) * bits);
+  return words;
+}
+
+void appendZeroRuns(std::span<const uint32_t> words, std::vector<uint32_t>& out) {
+  const size_t n = words.size();
+  size_t i = 0;
+  while (i < n) {
+    size_t z = i;
+    while (z < n && words[z] == 0) ++z;
+    // Literals run to the next pair of zeros (or the end).
+    size_t e = z;
+    while (e < n && (words[e] != 0 || (e + 1 < n && words[e + 1] != 0))) ++e;
+    out.push_back(uint32_t(z - i));
+    out.push_back(uint32_t(e - z));
+    out.insert(out.end(), words.begin() + std::ptrdiff_t(z), words.begin() + std::ptrdiff_t(e));
+    i = e;
+  }
+}
+
+void expandZeroRuns(std::span<const uint32_t> code, std::span<uint32_t> words) {
+  size_t at = 0, c = 0;
+  while (at < words.size()) {
+    if (c + 2 > code.size())
+      throw CommError("count exchange: a zero-run code ends after " + std::to_string(at) + " of " +
+                      std::to_string(words.size()) + " words");
+    const uint64_t zeros = code[c], literals = code[c + 1];
+    c += 2;
+    if (zeros + literals > words.size() - at || literals > code.size() - c)
+      throw CommError("count exchange: a zero-run record overruns its " +
+                      std::to_string(words.size()) + " words");
+    for (uint64_t k = 0; k < zeros; ++k) words[at++] = 0;
+    for (uint64_t k = 0; k < literals; ++k) words[at++] = code[c++];
+  }
+  if (c != code.size())
+    throw CommError("count exchange: " + std::to_string(code.size() - c) +
+                    " words left over after a zero-run code");
+}
+
+CountPayload choosePayload(uint64_t denseBytes, uint64_t codeWords) {
+  if (codeWords * 4 < denseBytes) return {codeWords * 4, true};
+  return {denseBytes, false};
+}
+
+}  // namespace sm::comp
