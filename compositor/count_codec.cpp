@@ -6,29 +6,56 @@
 
 namespace sm::comp {
 
-std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits) {
-  if (bits == 32) return {counters.begin(), counters.end()};
+void packCounterWords(std::span<const uint32_t> counters, uint32_t bits,
+                      std::vector<uint32_t>& words) {
+  if (bits == 32) {
+    words.assign(counters.begin(), counters.end());
+    return;
+  }
   const uint64_t perWord = 32 / bits;
-  std::vector<uint32_t> words((counters.size() + perWord - 1) / perWord, 0u);
+  words.assign((counters.size() + perWord - 1) / perWord, 0u);
   for (uint64_t i = 0; i < counters.size(); ++i)
     words[i / perWord] |= counters[i] << ((i % perWord) * bits);
+}
+
+std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits) {
+  std::vector<uint32_t> words;
+  packCounterWords(counters, bits, words);
   return words;
 }
 
-void appendZeroRuns(std::span<const uint32_t> words, std::vector<uint32_t>& out) {
+namespace {
+
+// Calls record(first zero, first literal, end of literals) for each record of the code.
+template <typename Record>
+void forEachZeroRun(std::span<const uint32_t> words, Record record) {
   const size_t n = words.size();
   size_t i = 0;
   while (i < n) {
     size_t z = i;
     while (z < n && words[z] == 0) ++z;
-    // Literals run to the next pair of zeros (or the end).
+    // Literals run to the next pair of zeros; a last single zero joins them.
     size_t e = z;
-    while (e < n && (words[e] != 0 || (e + 1 < n && words[e + 1] != 0))) ++e;
+    while (e < n && (words[e] != 0 || e + 1 == n || words[e + 1] != 0)) ++e;
+    record(i, z, e);
+    i = e;
+  }
+}
+
+}  // namespace
+
+void appendZeroRuns(std::span<const uint32_t> words, std::vector<uint32_t>& out) {
+  forEachZeroRun(words, [&](size_t i, size_t z, size_t e) {
     out.push_back(uint32_t(z - i));
     out.push_back(uint32_t(e - z));
     out.insert(out.end(), words.begin() + std::ptrdiff_t(z), words.begin() + std::ptrdiff_t(e));
-    i = e;
-  }
+  });
+}
+
+uint64_t zeroRunWords(std::span<const uint32_t> words) {
+  uint64_t n = 0;
+  forEachZeroRun(words, [&](size_t, size_t z, size_t e) { n += 2 + (e - z); });
+  return n;
 }
 
 void expandZeroRuns(std::span<const uint32_t> code, std::span<uint32_t> words) {

@@ -15,11 +15,16 @@ namespace sm::comp {
 // 32 / bits per word from the low bits up: encode_counts.comp's layout (bits < 32), or the counts
 // themselves (bits == 32).
 std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits);
+// The same into `words` (resized; no allocation once it is large enough).
+void packCounterWords(std::span<const uint32_t> counters, uint32_t bits,
+                      std::vector<uint32_t>& words);
 
 // Appends the zero-run code of `words` to `out`: records of (z, n, n literal words) meaning z zero
 // words then the n literals, until every word is described. A single zero between non-zero words
-// stays a literal (a new record would cost two words).
+// stays a literal (a new record would cost two words), as does a single zero at the end.
 void appendZeroRuns(std::span<const uint32_t> words, std::vector<uint32_t>& out);
+// How many words appendZeroRuns would append.
+uint64_t zeroRunWords(std::span<const uint32_t> words);
 
 // Expands a zero-run code into exactly words.size() words; throws CommError when the code does not
 // describe exactly that many (a transfer that went wrong, not a user error).

@@ -73,13 +73,13 @@ struct CompositeTimings {
 // One rank's statistics of the last frame; they describe the lists that were composited (for
 // SingleFragment: the flattened ones). Plain data, so that gatherStats() can move it as bytes.
 struct CompositeStats {
-  uint64_t fragments = 0;            // this rank's fragments
-  uint64_t nonEmptyPixels = 0;       // pixels with at least one fragment on this rank
-  uint32_t longestList = 0;          // on this rank
-  uint32_t counterBits = 0;          // bits per counter in the count exchange (0: no exchange)
-  uint64_t countBytesSent = 0;       // to other ranks (the share a rank keeps is not counted)
-  uint64_t fragmentBytesSent = 0;    // to other ranks
-  uint64_t bytesSent = 0;            // counts + fragments
+  uint64_t fragments = 0;          // this rank's fragments
+  uint64_t nonEmptyPixels = 0;     // pixels with at least one fragment on this rank
+  uint32_t longestList = 0;        // on this rank
+  uint32_t counterBits = 0;        // bits per counter in the count exchange (0: no exchange)
+  uint64_t countBytesSent = 0;     // to other ranks, headers included (not the share a rank keeps)
+  uint64_t fragmentBytesSent = 0;  // to other ranks
+  uint64_t bytesSent = 0;          // counts + fragments
   uint64_t fragmentsComposited = 0;  // fragments of the pixels this rank owns, from all ranks
   double milliseconds = 0;           // all of composite() on this rank
   CompositeTimings timings;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "compositor/count_codec.h"
 #include "compositor/deep_compositor.h"
@@ -219,6 +220,14 @@ void DeepExchange::transferCounts(CompositeStats& stats) {
   uint64_t words32 = 0;
   for (size_t s = 0; s < R; ++s) {
     recvBytes[s] = headerRecv_[s] & ~kZeroRunFlag;
+    // What a peer may send is fixed by the plan: its counters as they are, or a code smaller than
+    // that. Anything else would overrun the receive stage.
+    const bool code = headerRecv_[s] & kZeroRunFlag;
+    if (code ? recvBytes[s] % 4 != 0 || recvBytes[s] >= t.recvBytes[s]
+             : recvBytes[s] != t.recvBytes[s])
+      throw CommError("count exchange: rank " + std::to_string(s) + " announces " +
+                      std::to_string(recvBytes[s]) + " bytes" + (code ? " of zero runs" : "") +
+                      ", the plan allows " + std::to_string(t.recvBytes[s]));
     recvOffsets[s] = words32 * 4;
     words32 += (recvBytes[s] + 3) / 4;
   }

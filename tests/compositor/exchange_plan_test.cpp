@@ -221,12 +221,16 @@ TEST(CompositorCountCodec, ZeroRunsRoundTripAndNeverLoseAWord) {
     std::vector<uint32_t> back(words.size(), 0xDEADBEEFu);
     expandZeroRuns(code, back);
     EXPECT_EQ(back, words) << words.size() << " words";
+    EXPECT_EQ(zeroRunWords(words), code.size()) << words.size() << " words";
     // Never longer than the words plus one record per literal run.
     EXPECT_LE(code.size(), words.size() + 2 * (words.size() / 2 + 1));
   }
   std::vector<uint32_t> code;
   appendZeroRuns(std::vector<uint32_t>(1000, 0), code);
   EXPECT_EQ(code, (std::vector<uint32_t>{1000, 0})) << "an empty share is one record";
+  code.clear();
+  appendZeroRuns(std::vector<uint32_t>{7, 0}, code);
+  EXPECT_EQ(code, (std::vector<uint32_t>{0, 2, 7, 0})) << "a last single zero is a literal";
   // A code for the wrong number of words is refused, whichever way it is wrong.
   std::vector<uint32_t> four(4);
   EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{3, 0}, four), CommError);
@@ -245,6 +249,12 @@ TEST(CompositorCountCodec, ZeroRunsRoundTripAndNeverLoseAWord) {
 
 // A rank whose data covers a few pixels sends each destination a header and one short record
 // instead of a counter for every pixel the destination owns.
+TEST(CompositorReplay, CountsOfTheWrongSizeAreRefused) {
+  EXPECT_THROW(replayExchange(16, 2, Encoding::Float, 0, PixelOwnership::Interleaved,
+                              [](int, std::vector<uint32_t>& c) { c.resize(8); }),
+               std::invalid_argument);
+}
+
 TEST(CompositorReplay, SparseCoverageSendsZeroRunsInsteadOfEveryCounter) {
   const uint64_t pixels = 256 * 256;
   auto few = [&](int rank, std::vector<uint32_t>& c) {
