@@ -192,61 +192,76 @@ void DeepExchange::compactAndEncode(const ListsView& lists) {
 // that is smaller (count_codec.h), after one header per pair saying which and how long. Received
 // codes are expanded into the receive stage, where the device decodes every source's words.
 void DeepExchange::transferCounts(CompositeStats& stats) {
+  encodeCountPayloads();
   const size_t R = size_t(ranks_);
-  const Transfer& t = counts_.transfer;
+  headerRecv_.resize(R);
+  std::vector<uint64_t> eight(R, 8), slots(R);
+  for (size_t r = 0; r < R; ++r) slots[r] = r * 8;
+  comm_.alltoallv(headerSend_.data(), eight, slots, headerRecv_.data(), eight, slots);
+  planCountReceive();
+  comm_.alltoallv(countSend_.data(), payloadSend_.bytes, payloadSend_.offsets, countRecv_.data(),
+                  payloadRecv_.bytes, payloadRecv_.offsets);
+  expandCountPayloads();
+  stats.countBytesSent = 0;
+  for (size_t d = 0; d < R; ++d)
+    if (int(d) != rank_) stats.countBytesSent += 8 + payloadSend_.bytes[d];
+}
+
+void DeepExchange::encodeCountPayloads() {
+  const size_t R = size_t(ranks_);
   const auto* words = static_cast<const uint32_t*>(sendCountStage_.mapped());
-  std::vector<uint64_t> sendBytes(R), sendOffsets(R), recvBytes(R), recvOffsets(R);
-  countSend_.clear();
-  countSend_.reserve(1);
+  payloadSend_.resize(R);
   headerSend_.resize(R);
+  countSend_.clear();
+  countSend_.reserve(1);  // data() of an empty vector may be null
   for (size_t d = 0; d < R; ++d) {
     const std::span<const uint32_t> share(words + counts_.sendWordBegin[d],
                                           counts_.sendWordBegin[d + 1] - counts_.sendWordBegin[d]);
-    sendOffsets[d] = countSend_.size() * 4;
+    const size_t first = countSend_.size();
     appendZeroRuns(share, countSend_);
-    const CountPayload p = choosePayload(t.sendBytes[d], countSend_.size() - sendOffsets[d] / 4);
-    if (!p.zeroRuns) {
-      countSend_.resize(sendOffsets[d] / 4);
+    const CountPayload p = choosePayload(counts_.transfer.sendBytes[d], countSend_.size() - first);
+    if (!p.zeroRuns) {  // the words themselves, of which only the bytes holding counters go
+      countSend_.resize(first);
       countSend_.insert(countSend_.end(), share.begin(), share.end());
     }
-    sendBytes[d] = p.bytes;
+    payloadSend_.offsets[d] = first * 4;
+    payloadSend_.bytes[d] = p.bytes;
     headerSend_[d] = payloadHeader(p);
   }
-  headerRecv_.resize(R);
-  const std::vector<uint64_t> eight(R, 8);
-  std::vector<uint64_t> slots(R);
-  for (size_t r = 0; r < R; ++r) slots[r] = r * 8;
-  comm_.alltoallv(headerSend_.data(), eight, slots, headerRecv_.data(), eight, slots);
-  uint64_t words32 = 0;
+}
+
+// What a peer may send is fixed by the plan: its counters as they are, or a code smaller than
+// that. Anything else would overrun the receive stage.
+void DeepExchange::planCountReceive() {
+  const size_t R = size_t(ranks_);
+  const Transfer& t = counts_.transfer;
+  payloadRecv_.resize(R);
+  uint64_t words = 0;
   for (size_t s = 0; s < R; ++s) {
-    recvBytes[s] = headerRecv_[s] & ~kZeroRunFlag;
-    // What a peer may send is fixed by the plan: its counters as they are, or a code smaller than
-    // that. Anything else would overrun the receive stage.
+    const uint64_t bytes = headerRecv_[s] & ~kZeroRunFlag;
     const bool code = headerRecv_[s] & kZeroRunFlag;
-    if (code ? recvBytes[s] % 4 != 0 || recvBytes[s] >= t.recvBytes[s]
-             : recvBytes[s] != t.recvBytes[s])
+    if (code ? bytes % 4 != 0 || bytes >= t.recvBytes[s] : bytes != t.recvBytes[s])
       throw CommError("count exchange: rank " + std::to_string(s) + " announces " +
-                      std::to_string(recvBytes[s]) + " bytes" + (code ? " of zero runs" : "") +
+                      std::to_string(bytes) + " bytes" + (code ? " of zero runs" : "") +
                       ", the plan allows " + std::to_string(t.recvBytes[s]));
-    recvOffsets[s] = words32 * 4;
-    words32 += (recvBytes[s] + 3) / 4;
+    payloadRecv_.bytes[s] = bytes;
+    payloadRecv_.offsets[s] = words * 4;
+    words += (bytes + 3) / 4;
   }
-  countRecv_.resize(std::max<uint64_t>(words32, 1));  // data() of an empty vector may be null
-  comm_.alltoallv(countSend_.data(), sendBytes, sendOffsets, countRecv_.data(), recvBytes,
-                  recvOffsets);
+  countRecv_.resize(std::max<uint64_t>(words, 1));
+}
+
+void DeepExchange::expandCountPayloads() {
   auto* stage = static_cast<uint8_t*>(recvCountStage_.mapped());
-  for (size_t s = 0; s < R; ++s) {
+  for (size_t s = 0; s < size_t(ranks_); ++s) {
     uint8_t* to = stage + s * counts_.wordsPerSource * 4;
-    const uint32_t* from = countRecv_.data() + recvOffsets[s] / 4;
+    const uint32_t* from = countRecv_.data() + payloadRecv_.offsets[s] / 4;
+    const uint64_t bytes = payloadRecv_.bytes[s];
     if (headerRecv_[s] & kZeroRunFlag)
-      expandZeroRuns({from, recvBytes[s] / 4},
-                     {reinterpret_cast<uint32_t*>(to), counts_.wordsPerSource});
-    else if (recvBytes[s] > 0)
-      std::memcpy(to, from, recvBytes[s]);
+      expandZeroRuns({from, bytes / 4}, {reinterpret_cast<uint32_t*>(to), counts_.wordsPerSource});
+    else if (bytes > 0)
+      std::memcpy(to, from, bytes);
   }
-  stats.countBytesSent = 0;
-  for (size_t d = 0; d < R; ++d)
-    if (int(d) != rank_) stats.countBytesSent += 8 + sendBytes[d];
 }
 
 // Step 2 and the prefix sum of step 3: after it, recvBegin_ says where each source's fragments go.

@@ -51,6 +51,9 @@ class DeepExchange {
   void compactAndEncode(const ListsView& lists);
   void exchangeCounts(CompositeStats& stats);
   void transferCounts(CompositeStats& stats);
+  void encodeCountPayloads();
+  void planCountReceive();
+  void expandCountPayloads();
   void exchangeFragments(CompositeStats& stats);
   void compositeOwned();
   void gather(std::vector<glm::vec4>& image);
@@ -83,7 +86,15 @@ class DeepExchange {
   vk::Buffer ownedImage_;
   std::vector<glm::vec4> gathered_;  // rank 0, interleaved: the image in position order
   // Step 2 on the host: headers and payloads (count_codec.h) sent and received.
+  struct Payloads {
+    std::vector<uint64_t> bytes, offsets;  // per rank
+    void resize(size_t ranks) {
+      bytes.resize(ranks);
+      offsets.resize(ranks);
+    }
+  };
   std::vector<uint64_t> headerSend_, headerRecv_;
+  Payloads payloadSend_, payloadRecv_;
   std::vector<uint32_t> countSend_, countRecv_;
   // Step 3 (grow with the fragment totals)
   vk::Buffer sendFragments_, sendFragmentStage_, recvFragmentStage_, recvFragments_;

@@ -96,7 +96,12 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   Timer timer;
   r.vertexSource = orderAndRebase(mesh, frame, r.positions);
   ElementArrays elements;
-  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) elements[t] = std::move(mesh.cells[t]);
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+    elements[t] = std::move(mesh.cells[t]);
+    // Cluster ids describe the cells just taken (and partitioning is over): 4 bytes per element
+    // that would otherwise stay resident through connectivity, preparation's peak.
+    std::vector<int32_t>().swap(mesh.clusters[t]);
+  }
   remapElements(elements, r.vertexSource);
   orderElementsByVertex(elements, uint32_t(r.numVertices()));
   result.timings.vertexOrder = timer.seconds();

@@ -22,8 +22,8 @@ struct PrepResult {
 };
 
 // Prepares one rank's mesh. Takes the geometry out of `mesh` (points and cells are moved out and
-// released as soon as they are converted, to keep peak memory low); fields, clusters and the rest
-// stay for the caller. The frame must be the same on every rank.
+// released as soon as they are converted, and the cells' cluster ids with them, to keep peak
+// memory low); fields and the rest stay for the caller. The frame must be the same on every rank.
 PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                        const PrepOptions& options);
 
