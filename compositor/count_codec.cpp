@@ -18,12 +18,6 @@ void packCounterWords(std::span<const uint32_t> counters, uint32_t bits,
     words[i / perWord] |= counters[i] << ((i % perWord) * bits);
 }
 
-std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits) {
-  std::vector<uint32_t> words;
-  packCounterWords(counters, bits, words);
-  return words;
-}
-
 namespace {
 
 // Calls record(first zero, first literal, end of literals) for each record of the code.
@@ -77,8 +71,9 @@ void expandZeroRuns(std::span<const uint32_t> code, std::span<uint32_t> words) {
                     " words left over after a zero-run code");
 }
 
-CountPayload choosePayload(uint64_t denseBytes, uint64_t codeWords) {
-  if (codeWords * 4 < denseBytes) return {codeWords * 4, true};
+CountPayload choosePayload(std::span<const uint32_t> words, uint64_t denseBytes) {
+  const uint64_t codeBytes = zeroRunWords(words) * 4;
+  if (codeBytes < denseBytes) return {codeBytes, true};
   return {denseBytes, false};
 }
 

@@ -13,9 +13,7 @@ namespace sm::comp {
 
 // Counters (one per position of a destination's range, in position order) packed `bits` each,
 // 32 / bits per word from the low bits up: encode_counts.comp's layout (bits < 32), or the counts
-// themselves (bits == 32).
-std::vector<uint32_t> packCounterWords(std::span<const uint32_t> counters, uint32_t bits);
-// The same into `words` (resized; no allocation once it is large enough).
+// themselves (bits == 32), into `words` (resized; no allocation once it is large enough).
 void packCounterWords(std::span<const uint32_t> counters, uint32_t bits,
                       std::vector<uint32_t>& words);
 
@@ -30,16 +28,18 @@ uint64_t zeroRunWords(std::span<const uint32_t> words);
 // describe exactly that many (a transfer that went wrong, not a user error).
 void expandZeroRuns(std::span<const uint32_t> code, std::span<uint32_t> words);
 
-// What one destination's share costs to send: its packed size in bytes (dense: the bytes that hold
-// counters), or the zero-run code's when that is smaller. zeroRuns says which was chosen.
+// What one destination's share of packed `words` costs to send: denseBytes (the bytes that hold
+// counters), or its zero-run code's when that is smaller. zeroRuns says which was chosen. The
+// compositor sends what this chooses and the replay counts it.
 struct CountPayload {
   uint64_t bytes = 0;
   bool zeroRuns = false;
 };
-CountPayload choosePayload(uint64_t denseBytes, uint64_t codeWords);
+CountPayload choosePayload(std::span<const uint32_t> words, uint64_t denseBytes);
 
 // The header each pair of ranks exchanges before the payload: its size, and the top bit set for a
 // zero-run code.
+constexpr uint64_t kPayloadHeaderBytes = sizeof(uint64_t);
 constexpr uint64_t kZeroRunFlag = uint64_t(1) << 63;
 inline uint64_t payloadHeader(const CountPayload& p) {
   return p.bytes | (p.zeroRuns ? kZeroRunFlag : 0);

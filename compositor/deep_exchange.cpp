@@ -195,16 +195,16 @@ void DeepExchange::transferCounts(CompositeStats& stats) {
   encodeCountPayloads();
   const size_t R = size_t(ranks_);
   headerRecv_.resize(R);
-  std::vector<uint64_t> eight(R, 8), slots(R);
-  for (size_t r = 0; r < R; ++r) slots[r] = r * 8;
-  comm_.alltoallv(headerSend_.data(), eight, slots, headerRecv_.data(), eight, slots);
+  std::vector<uint64_t> headerBytes(R, kPayloadHeaderBytes), slots(R);
+  for (size_t r = 0; r < R; ++r) slots[r] = r * kPayloadHeaderBytes;
+  comm_.alltoallv(headerSend_.data(), headerBytes, slots, headerRecv_.data(), headerBytes, slots);
   planCountReceive();
   comm_.alltoallv(countSend_.data(), payloadSend_.bytes, payloadSend_.offsets, countRecv_.data(),
                   payloadRecv_.bytes, payloadRecv_.offsets);
   expandCountPayloads();
   stats.countBytesSent = 0;
   for (size_t d = 0; d < R; ++d)
-    if (int(d) != rank_) stats.countBytesSent += 8 + payloadSend_.bytes[d];
+    if (int(d) != rank_) stats.countBytesSent += kPayloadHeaderBytes + payloadSend_.bytes[d];
 }
 
 void DeepExchange::encodeCountPayloads() {
@@ -217,14 +217,12 @@ void DeepExchange::encodeCountPayloads() {
   for (size_t d = 0; d < R; ++d) {
     const std::span<const uint32_t> share(words + counts_.sendWordBegin[d],
                                           counts_.sendWordBegin[d + 1] - counts_.sendWordBegin[d]);
-    const size_t first = countSend_.size();
-    appendZeroRuns(share, countSend_);
-    const CountPayload p = choosePayload(counts_.transfer.sendBytes[d], countSend_.size() - first);
-    if (!p.zeroRuns) {  // the words themselves, of which only the bytes holding counters go
-      countSend_.resize(first);
+    const CountPayload p = choosePayload(share, counts_.transfer.sendBytes[d]);
+    payloadSend_.offsets[d] = countSend_.size() * 4;
+    if (p.zeroRuns)
+      appendZeroRuns(share, countSend_);
+    else  // the words themselves, of which only the bytes holding counters go
       countSend_.insert(countSend_.end(), share.begin(), share.end());
-    }
-    payloadSend_.offsets[d] = first * 4;
     payloadSend_.bytes[d] = p.bytes;
     headerSend_[d] = payloadHeader(p);
   }

@@ -58,7 +58,7 @@ struct CountBytes {
         if (d == s) continue;
         packCounterWords({byPosition.data() + ranges.begin(d), ranges.count(d)}, kWidths[w], words);
         const uint64_t bytes =
-            8 + choosePayload(plan.transfer.sendBytes[size_t(d)], zeroRunWords(words)).bytes;
+            kPayloadHeaderBytes + choosePayload(words, plan.transfer.sendBytes[size_t(d)]).bytes;
         sent[w][size_t(s)] += bytes;
         received[w][size_t(d)] += bytes;
       }

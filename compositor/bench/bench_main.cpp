@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench.h"
+#include "compositor/exchange_plan.h"
 
 #ifndef SHELLMARCH_MPIEXEC
 #define SHELLMARCH_MPIEXEC "mpiexec"
@@ -60,7 +61,14 @@ int main(int argc, char** argv) {
     c->add_option("--ownerships", run.ownerships,
                   "pixel ownerships to time: interleaved, ranges or both")
         ->delimiter(',')
-        ->check(CLI::IsMember({"interleaved", "ranges"}));
+        ->check([](const std::string& name) {
+          try {
+            sm::comp::parseOwnership(name);
+            return std::string();
+          } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+          }
+        });
   };
   CLI::App* runCmd = app.add_subcommand("run", "one rank count (under mpiexec)");
   addRunOptions(runCmd);

@@ -238,13 +238,19 @@ TEST(CompositorCountCodec, ZeroRunsRoundTripAndNeverLoseAWord) {
   EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{2, 2, 1}, four), CommError);
   EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{4, 0, 9}, four), CommError);
   // Packing is encode_counts.comp's: counter i at bits (i % per word) * bits of word i / per word.
-  EXPECT_EQ(packCounterWords(std::vector<uint32_t>{1, 2, 3}, 4), (std::vector<uint32_t>{0x321u}));
-  EXPECT_EQ(packCounterWords(std::vector<uint32_t>(17, 1), 2),
-            (std::vector<uint32_t>{0x55555555u, 0x1u}));
-  EXPECT_EQ(packCounterWords(std::vector<uint32_t>{300, 7}, 32), (std::vector<uint32_t>{300, 7}));
-  EXPECT_EQ(choosePayload(19, 2).bytes, 8u);
-  EXPECT_TRUE(choosePayload(19, 2).zeroRuns);
-  EXPECT_FALSE(choosePayload(7, 2).zeroRuns) << "dense when the code is not smaller";
+  std::vector<uint32_t> packed;
+  packCounterWords(std::vector<uint32_t>{1, 2, 3}, 4, packed);
+  EXPECT_EQ(packed, (std::vector<uint32_t>{0x321u}));
+  packCounterWords(std::vector<uint32_t>(17, 1), 2, packed);
+  EXPECT_EQ(packed, (std::vector<uint32_t>{0x55555555u, 0x1u}));
+  packCounterWords(std::vector<uint32_t>{300, 7}, 32, packed);
+  EXPECT_EQ(packed, (std::vector<uint32_t>{300, 7}));
+  // Five zero words code as one record of two words.
+  const std::vector<uint32_t> zeros(5, 0u);
+  EXPECT_EQ(choosePayload(zeros, 19).bytes, 8u);
+  EXPECT_TRUE(choosePayload(zeros, 19).zeroRuns);
+  EXPECT_FALSE(choosePayload(zeros, 7).zeroRuns) << "dense when the code is not smaller";
+  EXPECT_EQ(choosePayload(zeros, 7).bytes, 7u);
 }
 
 // A rank whose data covers a few pixels sends each destination a header and one short record
