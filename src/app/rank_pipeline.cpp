@@ -51,7 +51,8 @@ std::vector<float> fieldStep(const mesh::UnstructuredMesh& mesh, const prep::Pre
     std::string names;
     for (const auto& g : mesh.fields) names += (names.empty() ? "" : ", ") + g.name;
     throw Error("--field: ", mesh.source, " has no point field '", name,
-                "' (it has: ", names.empty() ? std::string("none") : names, ")");
+                "' (it has: ", names.empty() ? std::string("none") : names, ")",
+                mesh::cellArrayHint(mesh.cellArrays, name));
   }
   if (step >= f->numSteps())
     throw Error("--time: field '", name, "' has ", f->numSteps(), " time steps (0 .. ",

@@ -21,7 +21,8 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, 
   // left to choose could each take a different one.
   std::string name;
   if (coll.rank() == 0) {
-    if (m.fields.empty()) throw Error(job.mesh, ": has no point fields to render");
+    if (m.fields.empty())
+      throw Error(job.mesh, ": has no point fields to render", mesh::cellArrayHint(m.cellArrays));
     name = m.fields.front().name;
     log::info("--field not given: rendering '", name, "'");
   }

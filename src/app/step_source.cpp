@@ -53,7 +53,8 @@ std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std
     else
       for (const auto& f : share_.mesh.fields) names += (names.empty() ? "" : ", ") + f.name;
     throw Error("--field: ", path_, " has no point field '", field,
-                "' (it has: ", names.empty() ? std::string("none") : names, ")");
+                "' (it has: ", names.empty() ? std::string("none") : names, ")",
+                mesh::cellArrayHint(share_.mesh.cellArrays, field));
   }
   if (step >= n)
     throw Error("--time: field '", field, "' has ", n, " time steps (0 .. ", n - 1, "), not step ",

@@ -103,7 +103,8 @@ StepName splitStepName(std::string_view name) {
 
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
-                                  const ReadOptions& options) {
+                                  const ReadOptions& options,
+                                  const std::vector<std::string>& cellArrays) {
   std::vector<FieldLoad> loads;
   if (!options.loadFields) return loads;
   const std::vector<Group> groups = groupArrays(source, pointArrays);
@@ -128,7 +129,8 @@ std::vector<FieldLoad> planFields(const std::string& source,
     auto it = split ? byName(split->first) : groups.end();
     if (it == groups.end())
       throw FileError(source, "has no point array '", split ? split->first : request,
-                      "' (point arrays: ", listNames(groups), ")");
+                      "' (point arrays: ", listNames(groups), ")",
+                      mesh::cellArrayHint(cellArrays, request));
     if (uint32_t(split->second) >= it->components)
       throw FileError(source, "field '", request, "': point array '", it->base, "' has ",
                       it->components, it->components == 1 ? " component" : " components");
@@ -155,6 +157,16 @@ std::optional<size_t> chooseClusterArray(const std::string& source,
   for (std::string_view n : {"cluster", "partition", "vtkProcessId"})
     if (auto i = find(n)) return i;
   return std::nullopt;
+}
+
+std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
+                                        const ReadOptions& options) {
+  std::vector<std::string> data;
+  for (const std::string& n : names)
+    if (!isBookkeepingArray(n) && n != options.clusterArray && n != "cluster" &&
+        n != "partition" && n != "vtkProcessId")
+      data.push_back(n);
+  return data;
 }
 
 bool isBookkeepingArray(std::string_view name) {

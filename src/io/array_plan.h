@@ -38,9 +38,16 @@ StepName splitStepName(std::string_view name);
 // The loads that options ask for (every non-identifier array when options.fields is empty).
 // Throws sm::FileError(source, ...) for a requested name the file lacks (listing what it has), a
 // component out of range, or a name given both plain and with time steps.
+// `cellArrays` (dataCellArrays) only make that message say when a name is cell data.
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
-                                  const ReadOptions& options);
+                                  const ReadOptions& options,
+                                  const std::vector<std::string>& cellArrays = {});
+
+// The cell arrays among `names` that hold data: not bookkeeping (isBookkeepingArray) and not
+// cluster ids (options.clusterArray, "cluster", "partition", "vtkProcessId").
+std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
+                                        const ReadOptions& options);
 
 // Index of the cell array with cluster ids: options.clusterArray (sm::FileError listing the cell
 // arrays when absent), else the first of "cluster", "partition", "vtkProcessId"; none: cluster 0.

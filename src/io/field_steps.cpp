@@ -44,18 +44,20 @@ std::vector<FieldStepCount> countSteps(const std::string& source,
 
 // Every step of every field options ask for (ReadOptions::step narrows loads, not the listing).
 std::vector<FieldLoad> planAllSteps(const std::string& source, const std::vector<ArrayInfo>& arrays,
-                                    const ReadOptions& options) {
+                                    const ReadOptions& options,
+                                    const std::vector<std::string>& cellArrays) {
   ReadOptions all = options;
   all.step.reset();
   all.loadFields = true;
-  return planFields(source, arrays, all);
+  return planFields(source, arrays, all, cellArrays);
 }
 
 std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOptions& options) {
   FileBytes bytes = FileBytes::open(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
   std::vector<VtuPiece> pieces = vtuPieces(doc);
-  return countSteps(file, planAllSteps(file, vtuPointArrays(doc, pieces[0]), options));
+  return countSteps(file, planAllSteps(file, vtuPointArrays(doc, pieces[0]), options,
+                                       dataCellArrays(vtuCellArrayNames(pieces[0]), options)));
 }
 
 // The pieces read together are welded, which needs the same fields and steps in each.

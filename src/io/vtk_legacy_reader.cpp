@@ -205,6 +205,7 @@ class LegacyReader {
                    const std::vector<int64_t>& types, const std::vector<int64_t>& ghost);
   void addFields(mesh::MeshBuilder& b);
   void addClusters(mesh::MeshBuilder& b);
+  std::vector<std::string> dataCellArrayNames() const;
 
   const std::string& src_;
   const ReadOptions& options_;
@@ -261,6 +262,12 @@ void LegacyReader::addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>&
   }
 }
 
+std::vector<std::string> LegacyReader::dataCellArrayNames() const {
+  std::vector<std::string> names;
+  for (const auto& a : cellArrays_) names.push_back(a.name);
+  return dataCellArrays(names, options_);
+}
+
 void LegacyReader::addClusters(mesh::MeshBuilder& b) {
   std::vector<std::string> names;
   for (const auto& a : cellArrays_) names.push_back(a.name);
@@ -276,7 +283,7 @@ void LegacyReader::addClusters(mesh::MeshBuilder& b) {
 void LegacyReader::addFields(mesh::MeshBuilder& b) {
   std::vector<ArrayInfo> infos;
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
-  for (const FieldLoad& load : planFields(src_, infos, options_))
+  for (const FieldLoad& load : planFields(src_, infos, options_, dataCellArrayNames()))
     b.addFieldStep(load.field, load.step,
                    toFloats(pointArrays_[load.array].data, load.component, options_.threads));
 }
@@ -322,6 +329,7 @@ mesh::UnstructuredMesh LegacyReader::build() {
     }
   }
   ghostCells_.warn(src_);
+  b.setCellArrays(dataCellArrayNames());
   addClusters(b);
   if (options_.loadFields) addFields(b);
   if (timeValues_.data) {

@@ -42,4 +42,11 @@ std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& pi
   return infos;
 }
 
+std::vector<std::string> vtuCellArrayNames(const VtuPiece& piece) {
+  std::vector<std::string> names;
+  for (pugi::xml_node a : piece.node.child("CellData").children("DataArray"))
+    names.emplace_back(a.attribute("Name").value());
+  return names;
+}
+
 }  // namespace sm::io

@@ -29,4 +29,7 @@ pugi::xml_node findDataArray(pugi::xml_node parent, std::string_view name);
 // are marked as identifiers.
 std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& piece);
 
+// The names of a piece's cell arrays, in file order.
+std::vector<std::string> vtuCellArrayNames(const VtuPiece& piece);
+
 }  // namespace sm::io

@@ -37,6 +37,8 @@ class VtuReader {
 
   mesh::UnstructuredMesh read() {
     findPieces();
+    cellArrays_ = dataCellArrays(vtuCellArrayNames(pieces_[0]), options_);
+    builder_.setCellArrays(cellArrays_);
     readPoints();
     readCells();
     if (!pieceCluster_) readClusters();
@@ -145,15 +147,8 @@ class VtuReader {
     }
   }
 
-  std::vector<std::string> cellArrayNames() const {
-    std::vector<std::string> names;
-    for (pugi::xml_node a : pieces_[0].node.child("CellData").children("DataArray"))
-      names.emplace_back(a.attribute("Name").value());
-    return names;
-  }
-
   void readClusters() {
-    std::vector<std::string> names = cellArrayNames();
+    std::vector<std::string> names = vtuCellArrayNames(pieces_[0]);
     auto chosen = chooseClusterArray(src_, names, options_);
     if (!chosen) return;
     const std::string& name = names[*chosen];
@@ -171,7 +166,7 @@ class VtuReader {
   void readFields() {
     if (!options_.loadFields) return;
     std::vector<ArrayInfo> infos = vtuPointArrays(doc_, pieces_[0]);
-    for (const FieldLoad& load : planFields(src_, infos, options_)) {
+    for (const FieldLoad& load : planFields(src_, infos, options_, cellArrays_)) {
       const std::string& name = infos[load.array].name;
       std::vector<float> values;
       for (const Piece& p : pieces_) {
@@ -214,6 +209,7 @@ class VtuReader {
   mesh::MeshBuilder builder_;
   std::vector<Piece> pieces_;
   GhostCells ghostCells_;
+  std::vector<std::string> cellArrays_;  // data cell arrays (not read; messages)
 };
 
 }  // namespace

@@ -154,6 +154,7 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
     out.skipped.add(p.skipped);
     out.invertedFixed += p.invertedFixed;
     if (out.timeValues.empty()) out.timeValues = std::move(p.timeValues);
+    if (out.cellArrays.empty()) out.cellArrays = std::move(p.cellArrays);
   }
   out.points = std::move(w.points);
   out.pointOrigin = std::move(w.origin);

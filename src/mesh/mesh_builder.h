@@ -35,6 +35,7 @@ class MeshBuilder {
   // (they render transparent) and reported once per field as a warning.
   void addFieldStep(const std::string& name, uint64_t step, std::vector<float> values);
   void setTimeValues(std::vector<double> times) { mesh_.timeValues = std::move(times); }
+  void setCellArrays(std::vector<std::string> names) { mesh_.cellArrays = std::move(names); }
   // Replaces the cluster id of every cell added so far that came from file cell i with ids[i];
   // ids far above the cell count are renumbered densely, in order (renumberSparseClusters).
   void setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName);

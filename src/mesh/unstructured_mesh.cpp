@@ -131,8 +131,24 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
     a.clusters[t].insert(a.clusters[t].end(), b.clusters[t].begin(), b.clusters[t].end());
   }
   if (a.timeValues.empty()) a.timeValues = b.timeValues;
+  if (a.cellArrays.empty()) a.cellArrays = b.cellArrays;
   a.skipped.add(b.skipped);
   a.invertedFixed += b.invertedFixed;
+}
+
+std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std::string& name) {
+  if (cellArrays.empty()) return {};
+  const char* convert =
+      " is not rendered: fields are point data (ParaView's Cell Data to Point Data converts it)";
+  if (name.empty()) {
+    std::string names;
+    for (const auto& n : cellArrays) names += (names.empty() ? "" : ", ") + n;
+    return concat("; its cell data (", names, ")", convert);
+  }
+  // "NAME[k]" asks for a component of NAME.
+  const std::string base = name.back() == ']' ? name.substr(0, name.rfind('[')) : name;
+  if (std::find(cellArrays.begin(), cellArrays.end(), base) == cellArrays.end()) return {};
+  return concat("; '", base, "' is cell data, which", convert);
 }
 
 }  // namespace sm::mesh

@@ -56,6 +56,9 @@ struct UnstructuredMesh {
   std::array<std::vector<int32_t>, kNumCellTypes> clusters;  // cluster id per element
   std::vector<Field> fields;
   std::vector<double> timeValues;  // time of each step, when the file says
+  // The file's cell data arrays (not ids, ghosts or cluster ids). They are not fields: fields are
+  // point data. Kept so that a request for one says what it is instead of "no such field".
+  std::vector<std::string> cellArrays;
   SkippedCells skipped;
   uint64_t invertedFixed = 0;
   // For meshes joined from pieces (.pvtu): point i is point pointOrigin[i] of the pieces read,
@@ -75,6 +78,11 @@ struct UnstructuredMesh {
 // Scalar range of one step of a field, over finite values only.
 Range fieldRange(const Field& f, uint64_t step);
 Range fieldRange(const Field& f);  // all steps
+
+// Text to append to a message about a point field `name` ("NAME" or "NAME[k]") a file lacks:
+// where NAME is one of its cell arrays (UnstructuredMesh::cellArrays), or no name is given and it
+// has some, says that cell data is not rendered and how to get point data; else empty.
+std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std::string& name = {});
 
 // Appends `b` to `a` (vertex ids of b shifted); fields must match by name and step count.
 void append(UnstructuredMesh& a, const UnstructuredMesh& b);

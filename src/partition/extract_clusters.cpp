@@ -72,6 +72,7 @@ ExtractedClusters extractClustersWithPointMap(const UnstructuredMesh& mesh,
     sub.fields.push_back(std::move(g));
   }
   sub.timeValues = mesh.timeValues;
+  sub.cellArrays = mesh.cellArrays;
   return out;
 }
 

@@ -84,6 +84,13 @@ expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.p
 expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
+# Cell data only (what finite-volume solvers write): named as cell data, not as a missing field.
+sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="pressure"/;s/>0 1 2 3</>7</;}' -e 's/PointData/CellData/g' forged.vtu > cells.vtu
+expect "'pressure' is cell data" "$sm" render cells.vtu --field pressure --out a.png
+expect "cells.vtu: has no point fields to render; its cell data (pressure)" "$sm" render cells.vtu --out a.png
+if ! "$sm" info cells.vtu | grep -q "cell data  *pressure (not rendered"; then
+  echo "FAIL: info does not list the cell data"; fails=$((fails + 1))
+fi
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

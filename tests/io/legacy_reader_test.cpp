@@ -32,6 +32,15 @@ INSTANTIATE_TEST_SUITE_P(AllVersions, LegacyVersion,
                            return n.substr(5, n.size() - 9);
                          });
 
+TEST(LegacyReader, CellDataIsNamedAsSuchNotAsAMissingField) {
+  const std::string path = fixturePath("mesh_v42_ascii.vtk");
+  EXPECT_EQ(readMesh(path).cellArrays, std::vector<std::string>{"quality"});
+  ReadOptions o;
+  o.fields = {"quality"};
+  const std::string msg = fileErrorOf([&] { readMesh(path, o); });
+  EXPECT_NE(msg.find("'quality' is cell data"), std::string::npos) << msg;
+}
+
 TEST(LegacyReader, SharedPostFile) {
   // Version 3.0, binary big-endian, float points, dataset FIELD data, POINT_DATA FIELD Pressure.
   mesh::UnstructuredMesh m = readMesh(sm::test::sharedDataPath("post.vtk"));

@@ -98,6 +98,46 @@ TEST(VtuReader, UnknownFieldListsTheArraysTheFileHas) {
   EXPECT_NE(msg.find("3 components"), std::string::npos) << msg;
 }
 
+// Solvers often write cell data only; a request for a cell array must say that it is one (and
+// how to get point data) instead of "no such field". Cluster ids and ghosts are not listed.
+TEST(VtuReader, CellDataIsNamedAsSuchNotAsAMissingField) {
+  const std::string path = fixturePath("mesh_ascii.vtu");
+  EXPECT_EQ(readMesh(path).cellArrays, std::vector<std::string>{"quality"});
+  for (const char* request : {"quality", "quality[0]"}) {
+    ReadOptions o;
+    o.fields = {request};
+    const std::string msg = fileErrorOf([&] { readMesh(path, o); });
+    EXPECT_NE(msg.find("'quality' is cell data"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("Cell Data to Point Data"), std::string::npos) << msg;
+    EXPECT_NE(fileErrorOf([&] { listFieldSteps(path, o); }).find("'quality' is cell data"),
+              std::string::npos);
+  }
+  ReadOptions other;
+  other.fields = {"density"};
+  EXPECT_EQ(fileErrorOf([&] { readMesh(path, other); }).find("cell data"), std::string::npos);
+  EXPECT_EQ(mesh::cellArrayHint({"quality"}, "density"), "");
+  EXPECT_NE(mesh::cellArrayHint({"quality", "rho"}).find("its cell data (quality, rho)"),
+            std::string::npos);
+  // A .pvtu's pieces: the welded mesh keeps the list, a cluster subset too.
+  const std::string dir = sm::test::outputDir("VtuReader.CellData");
+  for (int k = 0; k < 2; ++k)
+    test::writeText(dir + "/c_" + std::to_string(k) + ".vtu", R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
+<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">)" +
+                        std::to_string(k) + R"( 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>
+<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>
+<CellData><DataArray type="Float32" Name="vtkGhostType" format="ascii">0</DataArray>
+<DataArray type="Float32" Name="rho" format="ascii">1.5</DataArray></CellData>
+</Piece></UnstructuredGrid></VTKFile>)");
+  test::writeText(dir + "/c.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>
+<Piece Source="c_0.vtu"/><Piece Source="c_1.vtu"/></PUnstructuredGrid></VTKFile>)");
+  EXPECT_EQ(readMesh(dir + "/c.pvtu").cellArrays, std::vector<std::string>{"rho"});
+}
+
 TEST(VtuReader, UnknownClusterArrayListsTheCellArrays) {
   ReadOptions o;
   o.clusterArray = "rank";
