@@ -158,6 +158,9 @@ void runRender(const RenderJob& job, Collectives& coll) {
   Timer total;
   ShareOptions shareOptions = job.share;
   shareOptions.streamSteps = true;
+  // Only the field rendered is read: a solver's file may hold dozens, and a component ("v[2]")
+  // is a field only when asked for by name.
+  if (!job.field.empty()) shareOptions.read.fields = {job.field};
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
   const StepSource source(job.mesh, share);
   const std::string field = resolveField(job, share.mesh, coll);
