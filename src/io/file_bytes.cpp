@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -16,19 +17,47 @@ namespace {
 
 struct Fd {
   int fd;
+  explicit Fd(int f) : fd(f) {}
+  Fd(Fd&& o) noexcept : fd(std::exchange(o.fd, -1)) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  Fd& operator=(Fd&&) = delete;
   ~Fd() {
     if (fd >= 0) ::close(fd);
   }
 };
 
-}  // namespace
-
-FileBytes FileBytes::open(const std::string& path) {
-  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+// Opens a regular file for reading. O_NONBLOCK: opening a FIFO would otherwise wait for a writer
+// (forever); a regular file reads the same either way, and anything else is refused.
+Fd openRegular(const std::string& path, struct stat& st) {
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
   if (f.fd < 0) throw FileError(path, "cannot open: ", std::strerror(errno));
-  struct stat st {};
   if (::fstat(f.fd, &st) != 0) throw FileError(path, "cannot stat: ", std::strerror(errno));
   if (!S_ISREG(st.st_mode)) throw FileError(path, "not a regular file");
+  return f;
+}
+
+}  // namespace
+
+std::string FileBytes::readPrefix(const std::string& path, size_t bytes) {
+  struct stat st {};
+  Fd f = openRegular(path, st);
+  std::string head(std::min<size_t>(bytes, size_t(st.st_size)), '\0');
+  size_t got = 0;
+  while (got < head.size()) {
+    const ssize_t n = ::read(f.fd, head.data() + got, head.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw FileError(path, "cannot read: ", std::strerror(errno));
+    if (n == 0) break;
+    got += size_t(n);
+  }
+  head.resize(got);
+  return head;
+}
+
+FileBytes FileBytes::open(const std::string& path) {
+  struct stat st {};
+  Fd f = openRegular(path, st);
   FileBytes b;
   if (st.st_size == 0) return b;
   // Read-only, so that MAP_POPULATE maps the page cache as it is (a writable mapping would be

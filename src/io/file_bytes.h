@@ -15,6 +15,8 @@ class FileBytes {
  public:
   // Throws sm::FileError naming the file when it cannot be opened or mapped.
   static FileBytes open(const std::string& path);
+  // At most the first `bytes` bytes of a regular file (a header), with open's checks.
+  static std::string readPrefix(const std::string& path, size_t bytes);
   static FileBytes copyOf(std::span<const uint8_t> bytes);
 
   FileBytes() = default;

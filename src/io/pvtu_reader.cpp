@@ -57,11 +57,7 @@ namespace {
 // NumberOfCells of the <Piece> elements in the first bytes of a .vtu: the XML header precedes
 // appended data, so a rank can size a piece without reading it.
 uint64_t declaredCells(const std::string& file) {
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) throw FileError(file, "cannot open");
-  std::string head(1 << 16, '\0');
-  head.resize(std::fread(head.data(), 1, head.size(), f));
-  std::fclose(f);
+  const std::string head = FileBytes::readPrefix(file, 1 << 16);
   checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
   uint64_t cells = 0;
   bool found = false;

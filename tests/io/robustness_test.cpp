@@ -3,6 +3,7 @@
 // merely claims. A replaced global operator new (plain and aligned) enforces the last point: while
 // a limit is set, a larger request throws std::bad_alloc, which these tests count as a failure.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <atomic>
 #include <cstdlib>
@@ -182,6 +183,27 @@ TEST(Robustness, AbsurdSizesInLegacyVtk) {
               "needs");
   expectError(replaced(bin, "CELLS 9 41", "CELLS 1000000000 41"), "b.vtk", "file ends");
   expectError(replaced(bin, "vtktypeint64", "vtktypeint128"), "b.vtk", "unknown data type");
+}
+
+// A FIFO opens for reading only once a writer comes: as a mesh, a piece or a piece sized from its
+// header it must be refused at once, not waited on (a hang on a cluster's shared file system).
+TEST(Robustness, PipesAndFoldersAreRefusedNotWaitedOn) {
+  const std::string dir = sm::test::outputDir("Robustness.Pipes");
+  const std::string fifo = dir + "/fifo.vtu";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::filesystem::create_directories(dir + "/folder.vtu");
+  std::filesystem::copy_file(fixturePath("mesh_ascii.vtu"), dir + "/ok.vtu",
+                             std::filesystem::copy_options::overwrite_existing);
+  for (const char* piece : {"fifo.vtu", "folder.vtu"}) {
+    const std::string index = dir + "/with_" + std::string(piece, 4) + ".pvtu";
+    test::writeText(index, std::string(R"(<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="ok.vtu"/><Piece Source=")") +
+                               piece + R"("/></PUnstructuredGrid></VTKFile>)");
+    const std::string want = dir + "/" + piece + ": not a regular file";
+    EXPECT_EQ(test::fileErrorOf([&] { readMesh(index); }), want);
+    EXPECT_EQ(test::fileErrorOf([&] { pieceCellCounts(index); }), want);
+    EXPECT_EQ(test::fileErrorOf([&] { readMesh(dir + "/" + piece); }), want);
+  }
 }
 
 TEST(Robustness, AbsurdSizesInUgrid) {
