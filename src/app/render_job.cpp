@@ -19,6 +19,7 @@
 #include "common/fault_injection.h"
 #include "common/file_util.h"
 #include "common/timer.h"
+#include "io/mesh_io.h"
 #include "render/renderer.h"
 #include "render/scalar_prefetch.h"
 #include "scene/image.h"
@@ -128,23 +129,56 @@ void renderFrames(const Frames& f) {
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
 }
 
-// Every file the job writes goes into a folder that exists: checked before any work, so that a
-// mistyped --stats-json does not fail after the image was written (a half-done run).
+// The files a job writes, by option (the heatmaps by their combined image; the per-rank ones sit
+// beside it).
+std::vector<std::pair<const char*, std::string>> outputFiles(const RenderJob& job) {
+  std::vector<std::pair<const char*, std::string>> files;
+  for (const auto& [option, path] : {std::pair<const char*, const std::string*>{"--out", &job.out},
+                                     {"--stats-json", &job.statsJson},
+                                     {"--l2-heatmap", &job.l2Heatmap},
+                                     {"--dump-counts", &job.dumpCounts}})
+    if (!path->empty()) files.emplace_back(option, *path);
+  if (!job.heatmaps.empty()) files.emplace_back("--heatmaps", job.heatmaps + "_all.png");
+  return files;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(a, b, ec)) return true;
+  // Files not yet written: by name, with "." and ".." and links in the existing part resolved.
+  auto resolved = [&ec](const std::string& p) {
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(p, ec), ec);
+  };
+  const std::filesystem::path ra = resolved(a), rb = resolved(b);
+  return !ec && ra == rb;
+}
+
+// Every file the job writes goes into a folder that exists, is not a folder itself, is not the
+// mesh it reads, and is not another output: checked before any work, so that a mistyped
+// --stats-json neither fails after the image was written (a half-done run) nor overwrites the
+// input.
 void checkOutputs(const RenderJob& job) {
-  const std::pair<const char*, const std::string*> outputs[] = {{"--out", &job.out},
-                                                                {"--stats-json", &job.statsJson},
-                                                                {"--l2-heatmap", &job.l2Heatmap},
-                                                                {"--heatmaps", &job.heatmaps},
-                                                                {"--dump-counts", &job.dumpCounts}};
-  for (const auto& [option, path] : outputs) {
-    if (path->empty()) continue;
-    const std::string dir = directoryOf(*path);
+  const auto outputs = outputFiles(job);
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    const std::string dir = directoryOf(path);
     std::error_code ec;
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
-      throw Error(option, ": '", *path, "' is in a folder that does not exist ('", dir, "')");
+      throw Error(option, ": '", path, "' is in a folder that does not exist ('", dir, "')");
+    if (std::filesystem::is_directory(path, ec))
+      throw Error(option, ": '", path, "' is a folder");
+    for (size_t j = 0; j < i; ++j)
+      if (sameFile(path, outputs[j].second))
+        throw Error(option, ": '", path, "' is also the file of ", outputs[j].first);
   }
   if (!job.l2Heatmap.empty() && fileExtension(job.l2Heatmap) != ".png")
     throw Error("--l2-heatmap: '", job.l2Heatmap, "' must end in .png");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(job.mesh, ec)) return;  // the reader names the fault
+  for (const std::string& input : io::meshFiles(job.mesh))
+    for (const auto& [option, path] : outputs)
+      if (sameFile(path, input))
+        throw Error(option, ": '", path, "' is the mesh being read (", input, ")");
 }
 
 }  // namespace

@@ -64,6 +64,13 @@ int countPieces(const std::string& path) {
   return formatOf(path) == Format::Pvtu ? countPvtuPieces(path) : 1;
 }
 
+std::vector<std::string> meshFiles(const std::string& path) {
+  std::vector<std::string> files{path};
+  if (formatOf(path) == Format::Pvtu)
+    for (std::string& piece : pvtuPieceFiles(path)) files.push_back(std::move(piece));
+  return files;
+}
+
 std::string formatDescription(const std::string& path) {
   switch (formatOf(path)) {
     case Format::Vtu:

@@ -54,6 +54,9 @@ std::string formatDescription(const std::string& path);
 // Pieces in a .pvtu without reading them (1 for every other format).
 int countPieces(const std::string& path);
 
+// The mesh files readMesh(path) reads: `path`, and a .pvtu's pieces. (Outputs must not be one.)
+std::vector<std::string> meshFiles(const std::string& path);
+
 // Cells each piece of a .pvtu declares in its header (the pieces are not read): what ranks need to
 // share pieces out by element count before each reads only its own.
 std::vector<uint64_t> pieceCellCounts(const std::string& path);

@@ -78,6 +78,16 @@ expect "--step" "$sm" bench render --mesh ok.pvtu --no-vtk --step 0 --work-dir b
 # An output in a missing folder is refused before anything is written (the image included).
 expect "--stats-json" "$sm" render ok.pvtu --stats-json nodir/s.json --out a.png
 expect "--l2-heatmap" "$sm" render ok.pvtu --l2-heatmap h.jpg --out a.png
+# An output that is a folder, the input mesh (or one of its pieces) or another output: refused
+# before anything is written, the input left as it was.
+mkdir -p sdir.json hm_all.png
+expect "--stats-json: 'sdir.json' is a folder" "$sm" render ok.pvtu --stats-json sdir.json --out a.png
+expect "--heatmaps: 'hm_all.png' is a folder" "$sm" render ok.pvtu --heatmaps hm --out a.png
+cp ok/ok_1.vtu piece.bak
+expect "--stats-json: 'ok/ok_1.vtu' is the mesh being read" "$sm" render ok.pvtu --stats-json ok/ok_1.vtu --out a.png
+expect "--dump-counts: 'ok.pvtu' is the mesh being read" "$sm" render ok.pvtu --dump-counts ok.pvtu --out a.png
+if ! cmp -s piece.bak ok/ok_1.vtu; then echo "FAIL: the input piece was overwritten"; fails=$((fails + 1)); fi
+expect "--stats-json: './a.png' is also the file of --out" "$sm" render ok.pvtu --stats-json ./a.png --out a.png
 # Without --step the step comes from the mesh: faults name the mesh or the view, not --step.
 sed -e 's/0 0 0 1 0 0 0 1 0 0 0 1/0 0 0 1 0 0 0 1 0 1 1 0/' -e 's/Name="f&#10;[^"]*"/Name="f"/' forged.vtu > flat.vtu
 expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.png
