@@ -308,32 +308,49 @@ void writeVtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   writeOne(path, mesh, options);
 }
 
-void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
-               const WriteOptions& options) {
-  const fs::path p(path);
-  const std::string stem = p.stem().string();
-  const fs::path folder = p.parent_path() / stem;
-  std::error_code ec;
-  // Checked before any piece is written: the index is written last, and failing then would leave
-  // pieces without one.
-  if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
-    throw FileError(path, "cannot write: exists and is not a regular file");
-  fs::create_directories(folder, ec);
-  if (ec)
-    throw FileError(folder.string(), "cannot create the folder for the pieces: ", ec.message());
-  // One piece per cluster id, empty ones included: sparse ids would mean absurdly many files.
-  if (uint64_t(mesh.numClusters()) > mesh.numCells() + 4096)
-    throw Error(path, ": the mesh numbers its clusters up to ", mesh.numClusters() - 1,
-                " but has only ", mesh.numCells(), " cells; renumber them before writing pieces");
-  const auto byCluster = cellsByCluster(mesh);
-  std::vector<uint32_t> local(mesh.points.size(), 0xFFFFFFFFu);
-  std::string pieces;
-  for (size_t k = 0; k < byCluster.size(); ++k) {
-    const std::string file = concat(stem, "_", k, ".vtu");
-    writeOne((folder / file).string(), extractPiece(mesh, int32_t(k), byCluster[k], local),
-             options);
-    pieces += concat("    <Piece Source=\"", xmlEscape(stem + "/" + file), "\"/>\n");
+namespace {
+
+// Pieces are written under staging names and renamed into place only once every one is complete:
+// a failure part way (disk full, a folder where a piece goes) then leaves an existing data set of
+// the same name as it was, instead of some of its pieces replaced by the new mesh's.
+class StagedPieces {
+ public:
+  StagedPieces(fs::path folder, bool createdFolder)
+      : folder_(std::move(folder)), createdFolder_(createdFolder) {}
+  StagedPieces(const StagedPieces&) = delete;
+  StagedPieces& operator=(const StagedPieces&) = delete;
+  ~StagedPieces() {
+    if (committed_) return;
+    std::error_code ec;
+    for (const auto& [staged, final] : files_) fs::remove(staged, ec);
+    if (createdFolder_) fs::remove(folder_, ec);  // only if empty
   }
+  // Where to write piece `file` now.
+  std::string stage(const std::string& file) {
+    const fs::path final = folder_ / file;
+    std::error_code ec;
+    if (fs::exists(final, ec) && !fs::is_regular_file(final, ec))
+      throw FileError(final.string(), "cannot write: exists and is not a regular file");
+    files_.emplace_back(folder_ / (file + ".staged"), final);
+    return files_.back().first.string();
+  }
+  void commit() {
+    for (const auto& [staged, final] : files_) {
+      std::error_code ec;
+      fs::rename(staged, final, ec);
+      if (ec) throw FileError(final.string(), "cannot write: ", ec.message());
+    }
+    committed_ = true;
+  }
+
+ private:
+  fs::path folder_;
+  bool createdFolder_;
+  std::vector<std::pair<fs::path, fs::path>> files_;  // (staged, final)
+  bool committed_ = false;
+};
+
+std::string pvtuIndex(const mesh::UnstructuredMesh& mesh, const std::string& pieces) {
   std::string x =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"";
   x += std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
@@ -345,6 +362,39 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
        "/>\n    </PCellData>\n    <PPoints>\n      <PDataArray " +
        dataArray("Float64", "Points", 3) + "/>\n    </PPoints>\n" + pieces +
        "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return x;
+}
+
+}  // namespace
+
+void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
+               const WriteOptions& options) {
+  const fs::path p(path);
+  const std::string stem = p.stem().string();
+  const fs::path folder = p.parent_path() / stem;
+  std::error_code ec;
+  // Checked before any piece is written: the index is written last, and failing then would leave
+  // pieces without one.
+  if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
+    throw FileError(path, "cannot write: exists and is not a regular file");
+  // One piece per cluster id, empty ones included: sparse ids would mean absurdly many files.
+  if (uint64_t(mesh.numClusters()) > mesh.numCells() + 4096)
+    throw Error(path, ": the mesh numbers its clusters up to ", mesh.numClusters() - 1,
+                " but has only ", mesh.numCells(), " cells; renumber them before writing pieces");
+  const bool created = fs::create_directories(folder, ec);
+  if (ec)
+    throw FileError(folder.string(), "cannot create the folder for the pieces: ", ec.message());
+  StagedPieces staged(folder, created);
+  const auto byCluster = cellsByCluster(mesh);
+  std::vector<uint32_t> local(mesh.points.size(), 0xFFFFFFFFu);
+  std::string pieces;
+  for (size_t k = 0; k < byCluster.size(); ++k) {
+    const std::string file = concat(stem, "_", k, ".vtu");
+    writeOne(staged.stage(file), extractPiece(mesh, int32_t(k), byCluster[k], local), options);
+    pieces += concat("    <Piece Source=\"", xmlEscape(stem + "/" + file), "\"/>\n");
+  }
+  staged.commit();
+  const std::string x = pvtuIndex(mesh, pieces);
   writeBytesAtomically(path, {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
 }
 

@@ -115,6 +115,26 @@ TEST(VtuWriter, UnwritablePathIsAFileErrorAndLeavesNothing) {
 }
 
 // VTK's own readers (Debian's python3-vtk9) must read what we write, with no error or warning.
+// A write that fails part way leaves the data set already there as it was: no piece of it
+// replaced by the new mesh's, no staged files, the index still naming its own pieces.
+TEST(PvtuWriter, AFailedWriteLeavesTheOldDataSetWhole) {
+  const std::string dir = sm::test::outputDir("PvtuWriter.FailedWrite");
+  const std::string path = dir + "/set.pvtu";
+  std::filesystem::remove_all(dir + "/set");
+  writePvtu(path, test::makeTestMesh(4, 1));
+  const std::vector<uint8_t> oldPiece = test::readBytes(dir + "/set/set_0.vtu");
+  const std::vector<uint8_t> oldIndex = test::readBytes(path);
+  std::filesystem::create_directories(dir + "/set/set_2.vtu");  // where piece 2 must go
+  const std::string msg = fileErrorOf([&] { writePvtu(path, test::makeTestMesh(6, 3)); });
+  EXPECT_NE(msg.find("set_2.vtu: cannot write"), std::string::npos) << msg;
+  EXPECT_EQ(test::readBytes(dir + "/set/set_0.vtu"), oldPiece);
+  EXPECT_EQ(test::readBytes(path), oldIndex);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/set/set_1.vtu"));
+  for (const auto& e : std::filesystem::directory_iterator(dir + "/set"))
+    EXPECT_EQ(e.path().string().find(".staged"), std::string::npos) << e.path();
+  EXPECT_EQ(readMesh(path).numCells(), test::makeTestMesh(4, 1).numCells());
+}
+
 TEST(PvtuWriter, VtkReadsOurFiles) {
   const std::string dir = sm::test::outputDir("PvtuWriter.Vtk");
   mesh::UnstructuredMesh m = test::makeTestMesh(6, 3);
