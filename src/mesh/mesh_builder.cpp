@@ -127,9 +127,11 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
   VtkTypeInfo info = classify(vtkType);
   switch (info.kind) {
     case Kind::Surface:
+      checkPointIds(vtkType, ids, fileCell);
       ++mesh_.skipped.surface;
       return;
     case Kind::LineOrVertex:
+      checkPointIds(vtkType, ids, fileCell);
       ++mesh_.skipped.lineOrVertex;
       return;
     case Kind::Polyhedron:
@@ -144,6 +146,11 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
   if (ids.size() < info.minIds)
     throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") has ", ids.size(),
                     " points, expected ", info.minIds);
+  // A linear cell's point count is its type's: a longer list is a damaged offset, not extra data.
+  if (!info.higherOrder && ids.size() > info.minIds)
+    throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") has ", ids.size(),
+                    " points, expected ", info.minIds);
+  if (info.higherOrder) checkPointIds(vtkType, ids, fileCell);  // the dropped points too
   if (info.higherOrder && ids.size() > numVerts(info.type)) ++mesh_.skipped.quadraticReduced;
   if (info.voxel) {
     const int64_t hex[8] = {ids[0], ids[1], ids[3], ids[2], ids[4], ids[5], ids[7], ids[6]};
@@ -151,6 +158,13 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
     return;
   }
   addCell(info.type, ids.first(numVerts(info.type)), fileCell, cluster);
+}
+
+void MeshBuilder::checkPointIds(int vtkType, std::span<const int64_t> ids, uint64_t fileCell) const {
+  for (int64_t id : ids)
+    if (id < 0 || uint64_t(id) >= mesh_.points.size())
+      throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") refers to point ", id,
+                      " but the file has ", mesh_.points.size(), " points");
 }
 
 void MeshBuilder::addCell(CellType type, std::span<const int64_t> ids, uint64_t fileCell,

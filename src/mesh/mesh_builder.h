@@ -45,6 +45,8 @@ class MeshBuilder {
 
  private:
   void renumberSparseClusters(const std::string& arrayName);
+  // Skipped and higher-order cells' ids must name points too (a file's damage shows there first).
+  void checkPointIds(int vtkType, std::span<const int64_t> ids, uint64_t fileCell) const;
 
   std::string source_;
   UnstructuredMesh mesh_;

@@ -111,6 +111,37 @@ TEST(MeshBuilder, ErrorsNameFileAndCell) {
   EXPECT_THROW(b.addVtkCell(12, tooFew, 8), FileError);
 }
 
+// Damage shows in ids the renderer would not use: a skipped cell's, a quadratic cell's midside
+// nodes, a linear cell listing more points than it has (a wrong offset). All are errors.
+TEST(MeshBuilder, EveryIdOfEveryCellNamesAPoint) {
+  MeshBuilder b("bad.vtk");
+  std::vector<glm::dvec3> p(10, glm::dvec3(0.5));
+  p[1] = {1, 0, 0};
+  p[2] = {0, 1, 0};
+  p[3] = {0, 0, 1};
+  b.setPoints(p);
+  auto message = [&](int type, std::vector<int64_t> ids) {
+    try {
+      b.addVtkCell(type, ids, 5);
+    } catch (const FileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(5, {0, 1, 77}),
+            "bad.vtk: cell 5 (VTK type 5) refers to point 77 but the file has 10 points");
+  EXPECT_EQ(message(3, {-1, 1}),
+            "bad.vtk: cell 5 (VTK type 3) refers to point -1 but the file has 10 points");
+  EXPECT_EQ(message(24, {0, 1, 2, 3, 4, 5, 6, 7, 8, 10}),
+            "bad.vtk: cell 5 (VTK type 24) refers to point 10 but the file has 10 points");
+  EXPECT_EQ(message(10, {0, 1, 2, 3, 4}), "bad.vtk: cell 5 (VTK type 10) has 5 points, expected 4");
+  EXPECT_EQ(message(12, {0, 1, 2, 3, 4, 5, 6, 7, 8}),
+            "bad.vtk: cell 5 (VTK type 12) has 9 points, expected 8");
+  EXPECT_EQ(message(42, {3, 0, 99, 1}), "no error");  // a polyhedron's face stream is not ids
+  EXPECT_EQ(message(10, {0, 1, 2, 3}), "no error");
+  EXPECT_EQ(message(24, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}), "no error");
+}
+
 TEST(MeshBuilder, RejectsNonFiniteCoordinates) {
   MeshBuilder b("nan.vtu");
   EXPECT_THROW(b.setPoints({{0, 0, 0}, {std::nan(""), 0, 0}}), FileError);
