@@ -58,9 +58,11 @@ std::pair<double, double> parseRange(const std::string& option, const std::strin
 
 render::Shading parseShading(const std::string& option, const std::string& value) {
   auto v = numbers(option, value, ',', 4);
-  if (!(v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[3] >= 1 && v[3] <= 1024))
+  // Bounded above too: the coefficients scale colours, and huge ones overflow them to infinity.
+  const auto coefficient = [](double c) { return c >= 0 && c <= 100; };
+  if (!(coefficient(v[0]) && coefficient(v[1]) && coefficient(v[2]) && v[3] >= 1 && v[3] <= 1024))
     throw Error(option, ": '", value,
-                "' needs AMBIENT,DIFFUSE,SPECULAR >= 0 and a SHININESS in [1, 1024]");
+                "' needs AMBIENT,DIFFUSE,SPECULAR in [0, 100] and a SHININESS in [1, 1024]");
   render::Shading s;
   s.enabled = true;
   s.ambient = v[0];

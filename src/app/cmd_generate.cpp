@@ -50,7 +50,10 @@ void validate(const GenerateArgs& a, const CLI::App& cmd) {
   if (fileExtension(a.out) != ".pvtu")
     throw Error("--out: expected a .pvtu file, got '", a.out, "'");
   if (a.clusters < 1) throw Error("--clusters: must be at least 1, got ", a.clusters);
-  if (a.steps < 1) throw Error("--steps: must be at least 1, got ", a.steps);
+  // Each step is a field array of the whole mesh, written into every piece: a bound like
+  // --elements', before anything is allocated.
+  if (a.steps < 1 || a.steps > 10000)
+    throw Error("--steps: must be between 1 and 10000, got ", a.steps);
   if (a.threads < 0) throw Error("--threads: must not be negative, got ", a.threads);
   if (a.analytic.empty()) {
     if (a.body != "capsule" && a.body != "lander")

@@ -112,7 +112,8 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
   row("fields", m.fields.size());
   for (const mesh::Field& f : m.fields) {
     const mesh::Range r = mesh::fieldRange(f);
-    out << "    " << f.name << ": " << f.numSteps() << (f.numSteps() == 1 ? " step" : " steps")
+    // Names come from the file: printed as one printable line each, as messages are.
+    out << "    " << printableLine(f.name) << ": " << f.numSteps() << (f.numSteps() == 1 ? " step" : " steps")
         << ", range "
         << (r.empty ? std::string("none (no finite values)") : concat("[", r.lo, ", ", r.hi, "]"))
         << "\n";
@@ -120,7 +121,7 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
   if (!m.cellArrays.empty()) {
     std::string names;
     for (const auto& n : m.cellArrays) names += (names.empty() ? "" : ", ") + n;
-    row("cell data", names + " (not rendered: fields are point data)");
+    row("cell data", printableLine(names) + " (not rendered: fields are point data)");
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <iostream>
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +37,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::Success& e) {  // a flag that prints and ends the run (view --help-script)
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line like every other error (CLI11's own format adds a second line).
     std::fprintf(stderr, "shellmarch: error: %s (see --help)\n",
@@ -50,6 +53,13 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());
+    return 1;
+  }
+  // Output redirected to a full disk or a closed pipe: a truncated `info --json` must not look
+  // like a complete one.
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    std::fprintf(stderr, "shellmarch: error: cannot write to standard output\n");
     return 1;
   }
   return 0;

@@ -66,6 +66,9 @@ scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
   scene::Camera c;
   c.eye = *job.eye;
   c.at = job.at.value_or(whole.center());
+  if (!job.at && c.eye == c.at)
+    throw Error("--eye: ", c.eye.x, ",", c.eye.y, ",", c.eye.z,
+                " is the centre of the data, where the camera looks without --at: give --at");
   c.up = job.up.value_or(glm::dvec3(0, 0, 1));
   c.fovyDeg = job.fovy;
   return c;

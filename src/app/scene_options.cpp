@@ -1,6 +1,10 @@
 #include "app/scene_options.h"
 
 #include <cmath>
+#include <utility>
+
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "app/cli_parsers.h"
 #include "common/error.h"
@@ -81,8 +85,17 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   if (!get("--view").empty()) {
     if (job.eye)
       throw Error("--view and --eye: give one (--view frames the data, --eye places the camera)");
+    if (job.at || job.up)
+      throw Error("--view and ", job.at ? "--at" : "--up",
+                  ": give one (--view frames the data; --at and --up go with --eye)");
     job.view = get("--view");
   }
+  if (!(job.fovy > 0 && job.fovy < 180))
+    throw Error("--fovy: ", job.fovy, " degrees is not in (0, 180)");
+  // The device computes in float: a camera beyond its range would see nothing, silently.
+  for (const auto& [option, v] : {std::pair{"--eye", job.eye}, std::pair{"--at", job.at}})
+    if (v && !(glm::all(glm::lessThanEqual(glm::abs(*v), glm::dvec3(1e30)))))
+      throw Error(option, ": components beyond 1e30 in size are out of the renderer's range");
   if (!get("--k").empty()) {
     const int64_t k = parseCount("--k", get("--k"), "slot count", 65535, "65535");
     if (job.lists.mode == comp::ListMode::TwoPass)

@@ -69,7 +69,8 @@ CameraFrame cameraFrame(const Camera& c, int width, int height) {
   if (glm::length(f) == 0.0) throw Error("camera: --eye and --at are the same point");
   f = glm::normalize(f);
   glm::dvec3 r = glm::cross(f, c.up);
-  if (glm::length(r) < 1e-12 * glm::length(c.up) || glm::length(c.up) == 0.0)
+  if (glm::length(c.up) == 0.0) throw Error("camera: --up is the zero vector");
+  if (glm::length(r) < 1e-12 * glm::length(c.up))
     throw Error("camera: --up is parallel to the viewing direction");
   r = glm::normalize(r);
   CameraFrame fr;

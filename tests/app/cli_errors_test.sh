@@ -107,6 +107,25 @@ if ! "$sm" render vec.vtu --field 'v[1]' --size 8x8 --out v.pfm >/dev/null 2>&1 
   echo "FAIL: render --field 'v[1]' did not render the component"; fails=$((fails + 1))
 fi
 expect "vec.vtu: field 'v[2]': point array 'v' has 2 components" "$sm" render vec.vtu --field 'v[2]' --out a.png
+# Camera and option faults are named for the option at fault, before the step is derived from them.
+expect "--fovy: 0 degrees is not in (0, 180)" "$sm" render ok.pvtu --fovy 0 --out a.png
+expect "--view and --up: give one" "$sm" render ok.pvtu --view +z --up 0,1,0 --out a.png
+expect "--up is the zero vector" "$sm" render ok.pvtu --eye 3,3,3 --up 0,0,0 --out a.png
+expect "--eye: components beyond 1e30" "$sm" render ok.pvtu --eye 1e39,0,1 --step 1e38 --out a.png
+expect "--eye: 0.5,0.5,0.5 is the centre of the data" "$sm" render ok.pvtu --eye 0.5,0.5,0.5 --out a.png
+expect "in [0, 100]" "$sm" render ok.pvtu --shading-params 1e39,0,0,20 --out a.png
+expect "--steps: must be between 1 and 10000" "$sm" generate --analytic single-tet --steps 100000000 --out s.pvtu
+# Standard output that cannot be written (a full disk): an error, not a truncated success.
+if out=$("$sm" info ok.pvtu 2>&1 >/dev/full); then echo "FAIL: info > /dev/full exited 0"; fails=$((fails + 1)); fi
+grep -qF "cannot write to standard output" <<<"$out" || { echo "FAIL: no message for /dev/full: $out"; fails=$((fails + 1)); }
+# A flag that prints and ends the run is not an error.
+if ! "$sm" view --help-script >/dev/null 2>err.txt || [ -s err.txt ]; then
+  echo "FAIL: view --help-script:"; cat err.txt; fails=$((fails + 1))
+fi
+# Names from a file are printed as one printable line by info too.
+if "$sm" info forged.vtu 2>/dev/null | grep -q '^shellmarch: error: forged'; then
+  echo "FAIL: info printed a field name's newline"; fails=$((fails + 1))
+fi
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi
