@@ -15,7 +15,8 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                      const std::string& timeHelp) {
   auto& t = raw.text;
   cmd->add_option("mesh", job.mesh, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
-  cmd->add_option("--field", job.field, "Point field to render (default: the first)");
+  cmd->add_option("--field", job.field, "Point field to render (default: the first)")
+      ->check(nonEmptyName());
   cmd->add_option("--time", job.time, timeHelp);
   cmd->add_option("--size", t["--size"], "Image size WxH (default 512x512)");
   cmd->add_option("--eye", t["--eye"], "Camera position x,y,z");
@@ -47,7 +48,8 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                   "Stop rays at this opacity (default 0.99)");
   cmd->add_option("--background", t["--background"], "Background colour r,g,b in [0,1]");
   cmd->add_option("--clusters", t["--clusters"], "Split into N clusters with METIS");
-  cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids");
+  cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids")
+      ->check(nonEmptyName());
   cmd->add_option("--lists", t["--lists"],
                   "Fragment lists: two-pass (exact), drop or merge (fixed K)");
   cmd->add_option("--k", t["--k"], "Slots per pixel for fixed-length lists (default 8)");
@@ -56,7 +58,8 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                   "Which rank composites which pixels: interleaved (default, balanced whatever "
                   "the view) or ranges (contiguous blocks, the paper's layout)");
   cmd->add_flag("--plain", raw.plain, "Keep elements uncompacted (no XOR compaction)");
-  cmd->add_option("--device", job.device, "Vulkan device index or name substring");
+  cmd->add_option("--device", job.device, "Vulkan device index or name substring")
+      ->check(nonEmptyName());
   cmd->add_option("--cache-dir", job.cacheDir, "Folder for the preparation cache (off by default)");
 }
 
@@ -104,6 +107,9 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
           "hold every fragment");
     job.lists.fixedK = uint32_t(k);
   }
+  if (!get("--clusters").empty() && !job.share.read.clusterArray.empty())
+    throw Error("--clusters and --cluster-array: give one (--clusters N makes new clusters with "
+                "METIS, --cluster-array reads the file's)");
   if (!get("--clusters").empty())
     job.share.metisClusters =
         int(parseCount("--clusters", get("--clusters"), "cluster count", 1 << 30, "2^30"));

@@ -27,7 +27,7 @@ struct ReadOptions {
   std::vector<std::string> fields;
   bool loadFields = true;
   // Cell array holding cluster ids. Empty: the first of "cluster", "partition", "vtkProcessId"
-  // present; else every cell is cluster 0. For .pvtu, piece i is cluster i and this is ignored.
+  // present; else every cell is cluster 0. For .pvtu, piece i is cluster i, and a name is an error.
   std::string clusterArray;
   // .pvtu only: read just these pieces (cluster ids stay the global piece numbers). Empty: all.
   std::vector<int> pieces;

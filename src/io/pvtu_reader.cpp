@@ -85,6 +85,10 @@ std::vector<uint64_t> pieceCellCounts(const std::string& path) {
 
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
                                 const OpenFile& open) {
+  // Refused rather than ignored: a user naming an array expects it to be used.
+  if (!options.clusterArray.empty())
+    throw FileError(path, "its pieces are its clusters; a cluster array ('", options.clusterArray,
+                    "') is read from .vtu and .vtk files only");
   const std::vector<std::string> files = pvtuPieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))

@@ -126,6 +126,14 @@ fi
 if "$sm" info forged.vtu 2>/dev/null | grep -q '^shellmarch: error: forged'; then
   echo "FAIL: info printed a field name's newline"; fails=$((fails + 1))
 fi
+expect "ok.pvtu: its pieces are its clusters; a cluster array ('x')" "$sm" render ok.pvtu --cluster-array x --out a.png
+expect "--clusters and --cluster-array: give one" "$sm" render ok.pvtu --cluster-array x --clusters 2 --out a.png
+expect "--field: must not be empty" "$sm" render ok.pvtu --field '' --out a.png
+expect "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.png
+# A benchmark's --json is checked before it measures anything.
+expect "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench prep --json nodir/x.json --no-vtk --work-dir bp
+expect "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw
+if [ -e bp ]; then echo "FAIL: bench prep worked before refusing --json"; fails=$((fails + 1)); fi
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "app/bench/bench_common.h"
+#include "app/cli_parsers.h"
 #include "app/bench/pareto_plot.h"
 #include "app/bench/rank_group.h"
 #include "app/bench/reference_images.h"
@@ -347,7 +348,8 @@ void configureAccuracyBench(CLI::App& cmd) {
   cmd.add_option("--work-dir", a->workDir, "Generated meshes and cached reference images")
       ->capture_default_str();
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
-  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file")
+      ->check(writableFile());
   cmd.add_option("--markdown", a->markdown, "Write the tables as Markdown to this file");
   cmd.add_option("--plot", a->plot, "Write the error-against-time plot (PNG, Pareto front marked)");
   cmd.callback([a] { runAccuracyBench(*a); });

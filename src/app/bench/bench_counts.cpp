@@ -219,7 +219,8 @@ void configureCountBench(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--dump-dir", a->dumpDir, "Where the count dumps go (default: --work-dir)");
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
-  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file")
+      ->check(writableFile());
   cmd.add_option("--markdown", a->markdown, "Write the table as Markdown to this file");
   cmd.callback([a] { runCountBench(*a); });
 }

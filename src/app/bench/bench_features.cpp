@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "app/bench/bench_common.h"
+#include "app/cli_parsers.h"
 #include "app/bench/rank_group.h"
 #include "app/bench/registry.h"
 #include "app/rank_pipeline.h"
@@ -235,7 +236,8 @@ void configureFeatureBench(CLI::App& cmd) {
   cmd.add_option("--work-dir", a->workDir, "Where the demo mesh is generated once")
       ->capture_default_str();
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
-  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file")
+      ->check(writableFile());
   cmd.add_option("--markdown", a->markdown, "Write the table as Markdown to this file");
   cmd.callback([a] { runFeatureBench(*a); });
 }

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "app/bench/bench_common.h"
+#include "app/cli_parsers.h"
 #include "app/bench/prep_measure.h"
 #include "app/bench/registry.h"
 #include "common/error.h"
@@ -170,7 +171,8 @@ void configurePrepBench(CLI::App& cmd) {
   cmd.add_option("--runs", a->runs, "Runs per mesh (medians are reported)")->capture_default_str();
   cmd.add_option("--work-dir", a->workDir, "Generated meshes (reused) and peer outputs")
       ->capture_default_str();
-  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file")
+      ->check(writableFile());
   cmd.add_option("--python", a->python, "Python with VTK (python3-vtk9)")->capture_default_str();
   cmd.add_flag("--no-vtk", a->noVtk, "Skip the VTK peer");
   cmd.callback([a] { runPrepBench(*a); });

@@ -457,7 +457,8 @@ void configureRenderBench(CLI::App& cmd) {
   cmd.add_option("--work-dir", a->workDir, "Generated mesh, reference images, VTK outputs")
       ->capture_default_str();
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
-  cmd.add_option("--json", a->json, "Write the results as JSON to this file");
+  cmd.add_option("--json", a->json, "Write the results as JSON to this file")
+      ->check(writableFile());
   cmd.add_option("--python", a->python, "Python with VTK (python3-vtk9)")->capture_default_str();
   cmd.add_flag("--no-vtk", a->noVtk, "Skip the VTK peer");
   cmd.callback([a] { runRenderBench(*a); });
