@@ -113,8 +113,8 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
   for (const mesh::Field& f : m.fields) {
     const mesh::Range r = mesh::fieldRange(f);
     // Names come from the file: printed as one printable line each, as messages are.
-    out << "    " << printableLine(f.name) << ": " << f.numSteps() << (f.numSteps() == 1 ? " step" : " steps")
-        << ", range "
+    out << "    " << printableLine(f.name) << ": " << f.numSteps()
+        << (f.numSteps() == 1 ? " step" : " steps") << ", range "
         << (r.empty ? std::string("none (no finite values)") : concat("[", r.lo, ", ", r.hi, "]"))
         << "\n";
   }

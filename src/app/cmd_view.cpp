@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli_parsers.h"
 #include "app/commands.h"
 #include "app/run_parallel.h"
 #include "app/scene_options.h"
 #include "app/view/input.h"
 #include "app/view/script.h"
 #include "app/view/viewer.h"
+#include "common/file_util.h"
 
 namespace sm::app {
 
@@ -26,8 +28,15 @@ void registerView(CLI::App& app) {
   cmd->add_option("--script", opts->script,
                   "Replay input from this file, or '-' for standard input (format: --help-script)");
   cmd->add_option(
-      "--screenshot", opts->screenshot,
-      "Write the last frame here at exit (PNG, no overlay); the s key writes FILE_NNNN.png");
+         "--screenshot", opts->screenshot,
+         "Write the last frame here at exit (PNG, no overlay); the s key writes FILE_NNNN.png")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            return fileExtension(path) == ".png" ? std::string()
+                                                 : "'" + path + "' must end in .png";
+          },
+          "FILE.png"))
+      ->check(writableFile());
   cmd->add_flag(
       "--print-camera", opts->printCamera,
       "At exit, print the final camera and settings as one JSON line, with the render arguments");

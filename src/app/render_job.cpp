@@ -165,8 +165,7 @@ void checkOutputs(const RenderJob& job) {
     std::error_code ec;
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
       throw Error(option, ": '", path, "' is in a folder that does not exist ('", dir, "')");
-    if (std::filesystem::is_directory(path, ec))
-      throw Error(option, ": '", path, "' is a folder");
+    if (std::filesystem::is_directory(path, ec)) throw Error(option, ": '", path, "' is a folder");
     for (size_t j = 0; j < i; ++j)
       if (sameFile(path, outputs[j].second))
         throw Error(option, ": '", path, "' is also the file of ", outputs[j].first);

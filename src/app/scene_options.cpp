@@ -108,8 +108,9 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.lists.fixedK = uint32_t(k);
   }
   if (!get("--clusters").empty() && !job.share.read.clusterArray.empty())
-    throw Error("--clusters and --cluster-array: give one (--clusters N makes new clusters with "
-                "METIS, --cluster-array reads the file's)");
+    throw Error(
+        "--clusters and --cluster-array: give one (--clusters N makes new clusters with "
+        "METIS, --cluster-array reads the file's)");
   if (!get("--clusters").empty())
     job.share.metisClusters =
         int(parseCount("--clusters", get("--clusters"), "cluster count", 1 << 30, "2^30"));

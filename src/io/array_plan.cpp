@@ -163,8 +163,8 @@ std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
                                         const ReadOptions& options) {
   std::vector<std::string> data;
   for (const std::string& n : names)
-    if (!isBookkeepingArray(n) && n != options.clusterArray && n != "cluster" &&
-        n != "partition" && n != "vtkProcessId")
+    if (!isBookkeepingArray(n) && n != options.clusterArray && n != "cluster" && n != "partition" &&
+        n != "vtkProcessId")
       data.push_back(n);
   return data;
 }

@@ -160,7 +160,8 @@ void MeshBuilder::addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t
   addCell(info.type, ids.first(numVerts(info.type)), fileCell, cluster);
 }
 
-void MeshBuilder::checkPointIds(int vtkType, std::span<const int64_t> ids, uint64_t fileCell) const {
+void MeshBuilder::checkPointIds(int vtkType, std::span<const int64_t> ids,
+                                uint64_t fileCell) const {
   for (int64_t id : ids)
     if (id < 0 || uint64_t(id) >= mesh_.points.size())
       throw FileError(source_, "cell ", fileCell, " (VTK type ", vtkType, ") refers to point ", id,

@@ -134,6 +134,7 @@ expect "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.pn
 expect "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench prep --json nodir/x.json --no-vtk --work-dir bp
 expect "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw
 if [ -e bp ]; then echo "FAIL: bench prep worked before refusing --json"; fails=$((fails + 1)); fi
+expect "--screenshot: 'v.jpg' must end in .png" "$sm" view ok.pvtu --headless --frames 1 --screenshot v.jpg
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

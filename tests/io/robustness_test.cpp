@@ -197,8 +197,11 @@ TEST(Robustness, PipesAndFoldersAreRefusedNotWaitedOn) {
                              std::filesystem::copy_options::overwrite_existing);
   for (const char* piece : {"fifo.vtu", "folder.vtu"}) {
     const std::string index = dir + "/with_" + std::string(piece, 4) + ".pvtu";
-    test::writeText(index, std::string(R"(<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="ok.vtu"/><Piece Source=")") +
-                               piece + R"("/></PUnstructuredGrid></VTKFile>)");
+    test::writeText(
+        index,
+        std::string(
+            R"(<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="ok.vtu"/><Piece Source=")") +
+            piece + R"("/></PUnstructuredGrid></VTKFile>)");
     const std::string want = dir + "/" + piece + ": not a regular file";
     EXPECT_EQ(test::fileErrorOf([&] { readMesh(index); }), want);
     EXPECT_EQ(test::fileErrorOf([&] { pieceCellCounts(index); }), want);

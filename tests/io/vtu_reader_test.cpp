@@ -121,7 +121,8 @@ TEST(VtuReader, CellDataIsNamedAsSuchNotAsAMissingField) {
   // A .pvtu's pieces: the welded mesh keeps the list, a cluster subset too.
   const std::string dir = sm::test::outputDir("VtuReader.CellData");
   for (int k = 0; k < 2; ++k)
-    test::writeText(dir + "/c_" + std::to_string(k) + ".vtu", R"(<?xml version="1.0"?>
+    test::writeText(dir + "/c_" + std::to_string(k) + ".vtu",
+                    R"(<?xml version="1.0"?>
 <VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
 <UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
 <Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">)" +

@@ -13,12 +13,12 @@
 #include <optional>
 
 #include "app/bench/bench_common.h"
-#include "app/cli_parsers.h"
 #include "app/bench/pareto_plot.h"
 #include "app/bench/rank_group.h"
 #include "app/bench/reference_images.h"
 #include "app/bench/registry.h"
 #include "app/bench/render_measure.h"
+#include "app/cli_parsers.h"
 #include "app/rank_pipeline.h"
 #include "app/rank_share.h"
 #include "common/error.h"

@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "app/bench/bench_common.h"
-#include "app/cli_parsers.h"
 #include "app/bench/rank_group.h"
 #include "app/bench/registry.h"
+#include "app/cli_parsers.h"
 #include "app/rank_pipeline.h"
 #include "common/error.h"
 #include "common/file_util.h"

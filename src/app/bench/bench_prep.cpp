@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "app/bench/bench_common.h"
-#include "app/cli_parsers.h"
 #include "app/bench/prep_measure.h"
 #include "app/bench/registry.h"
+#include "app/cli_parsers.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "prep/memory_report.h"
