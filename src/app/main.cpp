@@ -1,14 +1,36 @@
 #include <malloc.h>
 
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
 #include "common/error.h"
 #include "common/log.h"
+
+namespace {
+
+// Under mpiexec every rank parses the same options and fails the same way before MPI starts: rank
+// 0 says so at once, and mpiexec, seeing it exit, ends the others. They wait a moment before they
+// speak, so that their copies of the line appear only where rank 0 did not fail.
+bool isRankZero() {
+  for (const char* var : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* rank = std::getenv(var)) return std::string(rank) == "0";
+  return true;
+}
+
+void printError(const std::string& what) {
+  if (!isRankZero()) std::this_thread::sleep_for(std::chrono::seconds(2));
+  std::fprintf(stderr, "shellmarch: error: %s\n", what.c_str());
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Big arrays (cells, scalars, face keys) are mapped on their own and returned to the system when
@@ -41,25 +63,24 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line like every other error (CLI11's own format adds a second line).
-    std::fprintf(stderr, "shellmarch: error: %s (see --help)\n",
-                 sm::printableLine(e.what()).c_str());
+    printError(sm::printableLine(e.what()) + " (see --help)");
     return e.get_exit_code();
   } catch (const sm::Error& e) {
     // Messages quote names from input files: one printable line on the terminal.
-    std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());
+    printError(sm::printableLine(e.what()));
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "shellmarch: error: out of memory\n");
+    printError("out of memory");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "shellmarch: error: %s\n", sm::printableLine(e.what()).c_str());
+    printError(sm::printableLine(e.what()));
     return 1;
   }
   // Output redirected to a full disk or a closed pipe: a truncated `info --json` must not look
   // like a complete one.
   std::cout.flush();
   if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
-    std::fprintf(stderr, "shellmarch: error: cannot write to standard output\n");
+    printError("cannot write to standard output");
     return 1;
   }
   return 0;

@@ -2,7 +2,7 @@
 # Fault tests through the command-line tool (tests/reliability/CMakeLists.txt registers each case;
 # docs/RELIABILITY.md describes them). Usage:
 #   faults.sh CASE SHELLMARCH MPIEXEC WORK_DIR
-# CASE is one of: data, kill_rank, throw_rank, corrupt_piece, png_kill, cache_write, cache_corrupt,
+# CASE is one of: data, kill_rank, throw_rank, corrupt_piece, same_error, png_kill, cache_write, cache_corrupt,
 # oom_scene, oom_lists_fixed, oom_lists_two_pass, overflow. `data` generates the mesh the others
 # use (a ctest fixture). Each case prints what it checked and the time the failing run took; a
 # hang is caught by `timeout` (exit status 124), never waited out.
@@ -119,6 +119,20 @@ corrupt_piece)
     fail "no rank's message names the corrupt piece"
   [ ! -e "$dir/a.png" ] || fail "an image was written"
   pass "all ranks ended ${seconds}s after start"
+  ;;
+same_error)
+  # Every rank fails the same way (a field no piece has; an impossible option, found before MPI
+  # starts): one line says so, not one per rank.
+  run render "${mpi3[@]}" render "$data" --field nosuch --size 48x48 --out "$dir/a.png"
+  [ $status -ne 0 ] || fail "mpiexec succeeded with a missing field"
+  n=$(grep -c "failed: .*has no point array 'nosuch'" "$dir/render.log")
+  [ "$n" -eq 1 ] || fail "$n lines report the missing field (one should)"
+  run option "${mpi3[@]}" render "$data" --fovy 0 --out "$dir/a.png"
+  [ $status -ne 0 ] || fail "mpiexec succeeded with --fovy 0"
+  n=$(grep -c "shellmarch: error: --fovy" "$dir/option.log")
+  [ "$n" -eq 1 ] || fail "$n lines report --fovy (one should)"
+  [ ! -e "$dir/a.png" ] || fail "an image was written"
+  pass "one line each"
   ;;
 png_kill)
   # The process dies halfway through writing the PNG: the file under its name keeps its old
