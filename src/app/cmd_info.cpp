@@ -68,7 +68,7 @@ nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m) {
       b.empty ? nlohmann::json(nullptr)
               : nlohmann::json{{"lo", {b.lo.x, b.lo.y, b.lo.z}}, {"hi", {b.hi.x, b.hi.y, b.hi.z}}};
   j["timeValues"] = m.timeValues;
-  j["cellArrays"] = m.cellArrays;  // not rendered: fields are point data
+  j["cellArrays"] = m.cellArrays;  // fields only when named (averaged onto the points)
   j["fields"] = nlohmann::json::array();
   for (const mesh::Field& f : m.fields)
     j["fields"].push_back(
@@ -118,11 +118,11 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
         << (r.empty ? std::string("none (no finite values)") : concat("[", r.lo, ", ", r.hi, "]"))
         << "\n";
   }
-  if (!m.cellArrays.empty()) {
-    std::string names;
-    for (const auto& n : m.cellArrays) names += (names.empty() ? "" : ", ") + n;
-    row("cell data", printableLine(names) + " (not rendered: fields are point data)");
-  }
+  std::string names;  // cell data not asked for (--field NAME averages it onto the points)
+  for (const auto& n : m.cellArrays)
+    if (!m.findField(n)) names += (names.empty() ? "" : ", ") + n;
+  if (!names.empty())
+    row("cell data", printableLine(names) + " (--field NAME renders it, averaged to the points)");
 }
 
 void runInfo(const InfoOptions& o) {

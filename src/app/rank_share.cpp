@@ -103,8 +103,13 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives&
 }  // namespace
 
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
-  bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0;
-  RankShare s = pieces ? readPieces(path, o, coll) : readWhole(path, o, coll);
+  // Cell data is averaged onto the points of the whole mesh (a point between two ranks' pieces
+  // needs the cells of both), so every rank reads it whole, with every step, and takes its share.
+  const bool cellData = io::asksForCellData(path, o.read);
+  ShareOptions read = o;
+  read.streamSteps = o.streamSteps && !cellData;
+  const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0 && !cellData;
+  RankShare s = pieces ? readPieces(path, read, coll) : readWhole(path, read, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);
   render::ElementSizeSum local = render::elementSizeSum(s.mesh);
   s.elementSize.sum = coll.sum(local.sum);

@@ -159,6 +159,35 @@ std::optional<size_t> chooseClusterArray(const std::string& source,
   return std::nullopt;
 }
 
+FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
+                              const std::vector<ArrayInfo>& cellArrays,
+                              const ReadOptions& options) {
+  FieldSplit split{options, options};
+  split.cells.fields.clear();
+  if (options.fields.empty() || !options.loadFields) {
+    split.cells.loadFields = false;
+    return split;
+  }
+  auto names = [](const std::vector<ArrayInfo>& arrays, const std::string& request) {
+    auto c = splitComponent(request);
+    for (const ArrayInfo& a : arrays) {
+      const std::string base = splitStepName(a.name).base;
+      if (base == request || (c && base == c->first)) return true;
+    }
+    return false;
+  };
+  split.points.fields.clear();
+  for (const std::string& r : options.fields) {
+    if (!names(pointArrays, r) && names(cellArrays, r))
+      split.cells.fields.push_back(r);
+    else
+      split.points.fields.push_back(r);
+  }
+  split.points.loadFields = !split.points.fields.empty();
+  split.cells.loadFields = !split.cells.fields.empty();
+  return split;
+}
+
 std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
                                         const ReadOptions& options) {
   std::vector<std::string> data;

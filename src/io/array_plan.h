@@ -44,6 +44,17 @@ std::vector<FieldLoad> planFields(const std::string& source,
                                   const ReadOptions& options,
                                   const std::vector<std::string>& cellArrays = {});
 
+// Which of options.fields a reader loads from point data and which from cell data (to be averaged
+// onto the points): a request is cell data when it names no point array (by its name, a component
+// "NAME[k]" or time steps "NAME@tK") but a cell array. Point data wins where both have the name.
+// Cell data is read only when asked for by name: with no fields named, `cells` is empty.
+struct FieldSplit {
+  ReadOptions points;  // options with only the point requests (loadFields off if none is left)
+  ReadOptions cells;   // options with only the cell requests (loadFields off if none)
+};
+FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
+                              const std::vector<ArrayInfo>& cellArrays, const ReadOptions& options);
+
 // The cell arrays among `names` that hold data: not bookkeeping (isBookkeepingArray) and not
 // cluster ids (options.clusterArray, "cluster", "partition", "vtkProcessId").
 std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,

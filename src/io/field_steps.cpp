@@ -189,4 +189,16 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
   return mapPoints(path, std::move(values), pointMap);
 }
 
+bool asksForCellData(const std::string& path, const ReadOptions& options) {
+  const std::string ext = fileExtension(path);
+  if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && ext != ".pvtu"))
+    return false;
+  const std::string file = ext == ".pvtu" ? pvtuPieceFiles(path).at(0) : path;
+  FileBytes bytes = FileBytes::open(file);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
+  const std::vector<VtuPiece> pieces = vtuPieces(doc);
+  return splitFieldRequests(vtuPointArrays(doc, pieces[0]), vtuCellArrays(doc, pieces[0]), options)
+      .cells.loadFields;
+}
+
 }  // namespace sm::io

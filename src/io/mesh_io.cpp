@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/log.h"
 #include "io/readers.h"
 
 namespace sm::io {
@@ -25,9 +26,17 @@ void checkNoPieces(const std::string& name, const ReadOptions& options) {
     throw FileError(name, "has no pieces to choose from (only a .pvtu has pieces)");
 }
 
-}  // namespace
+// Cell data asked for as fields becomes point data once the whole mesh is read (every piece of a
+// .pvtu joined), so that points between pieces average the cells of both.
+mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m) {
+  for (const mesh::CellField& f : m.cellFields)
+    log::info(m.source, ": field '", f.name,
+              "' is cell data: each point takes the mean of the cells around it");
+  mesh::cellFieldsToPoints(m);
+  return m;
+}
 
-mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
+mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& options) {
   const Format format = formatOf(path);
   if (format != Format::Pvtu) checkNoPieces(path, options);
   switch (format) {
@@ -43,17 +52,23 @@ mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& opti
   return {};
 }
 
+}  // namespace
+
+mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
+  return withCellDataOnPoints(readAnyMesh(path, options));
+}
+
 mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
                                           const ReadOptions& options) {
   const Format format = formatOf(name);
   if (format != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
   switch (format) {
     case Format::Vtu:
-      return readVtu(FileBytes::copyOf(bytes), name, options);
+      return withCellDataOnPoints(readVtu(FileBytes::copyOf(bytes), name, options));
     case Format::Pvtu:
       throw Error(name, ": a .pvtu names its pieces by file; read it with readMesh");
     case Format::LegacyVtk:
-      return readLegacyVtk(FileBytes::copyOf(bytes), name, options);
+      return withCellDataOnPoints(readLegacyVtk(FileBytes::copyOf(bytes), name, options));
     case Format::Ugrid:
       return readUgrid(FileBytes::copyOf(bytes), name, options, false);
   }

@@ -73,6 +73,11 @@ struct FieldStepCount {
 std::vector<FieldStepCount> listFieldSteps(const std::string& path,
                                            const ReadOptions& options = {});
 
+// True when options.fields names cell data that readMesh would average onto the points (a .vtu's
+// or a .pvtu's first piece's header says; other formats are always read whole). Such a field is
+// not streamed step by step, and a partitioned mesh must be read whole before it is split.
+bool asksForCellData(const std::string& path, const ReadOptions& options);
+
 // Step `step` of point field `field` ("NAME" or "NAME[k]", as ReadOptions::fields), read from the
 // file without its points and cells: only that field's DataArray is decoded (.vtu, and the .vtu
 // pieces in options.pieces of a .pvtu). Values come in the order of the points of the pieces

@@ -56,9 +56,21 @@ class LegacyReader {
   }
 
   bool keepCellArray(std::string_view name) const {
-    if (name == "vtkGhostType") return true;
+    if (name == "vtkGhostType" || askedForAsField(name)) return true;
     if (!options_.clusterArray.empty()) return name == options_.clusterArray;
     return name == "cluster" || name == "partition" || name == "vtkProcessId";
+  }
+
+  // A cell array that --field names (itself, a component, or its time steps) may be the field:
+  // kept until addFields knows whether a point array of that name came too.
+  bool askedForAsField(std::string_view name) const {
+    if (!options_.loadFields) return false;
+    const std::string base = splitStepName(name).base;
+    for (const std::string& r : options_.fields)
+      if (r == base ||
+          (r.back() == ']' && r.compare(0, r.rfind('['), base) == 0 && r.rfind('[') == base.size()))
+        return true;
+    return false;
   }
 
   void addArray(Where where, std::string name, std::string_view type, uint32_t comps,
@@ -281,9 +293,18 @@ void LegacyReader::addClusters(mesh::MeshBuilder& b) {
 }
 
 void LegacyReader::addFields(mesh::MeshBuilder& b) {
-  std::vector<ArrayInfo> infos;
+  std::vector<ArrayInfo> infos, cellInfos;
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
-  for (const FieldLoad& load : planFields(src_, infos, options_, dataCellArrayNames()))
+  for (const auto& a : cellArrays_) cellInfos.push_back({a.name, a.data.components, a.identifier});
+  const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
+  for (const FieldLoad& load : planFields(src_, cellInfos, split.cells)) {
+    if (cellArrays_[load.array].data.tuples != numCells_)
+      throw FileError(src_, "cell array '", cellArrays_[load.array].name, "' does not have ",
+                      numCells_, " values");
+    b.addCellFieldStep(load.field, load.step,
+                       toFloats(cellArrays_[load.array].data, load.component, options_.threads));
+  }
+  for (const FieldLoad& load : planFields(src_, infos, split.points, dataCellArrayNames()))
     b.addFieldStep(load.field, load.step,
                    toFloats(pointArrays_[load.array].data, load.component, options_.threads));
 }

@@ -28,18 +28,30 @@ pugi::xml_node findDataArray(pugi::xml_node parent, std::string_view name) {
   return {};
 }
 
-std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& piece) {
-  pugi::xml_node pd = piece.node.child("PointData");
-  std::string_view globalIds = pd.attribute("GlobalIds").value();
-  std::string_view pedigreeIds = pd.attribute("PedigreeIds").value();
+namespace {
+
+std::vector<ArrayInfo> numericArrays(const VtuDocument& doc, pugi::xml_node data,
+                                     const char* what) {
+  std::string_view globalIds = data.attribute("GlobalIds").value();
+  std::string_view pedigreeIds = data.attribute("PedigreeIds").value();
   std::vector<ArrayInfo> infos;
-  for (pugi::xml_node a : pd.children("DataArray")) {
+  for (pugi::xml_node a : data.children("DataArray")) {
     std::string_view name = a.attribute("Name").value();
     if (!scalarTypeFromXml(a.attribute("type").value())) continue;  // strings and the like
     bool id = name == globalIds || name == pedigreeIds || isBookkeepingArray(name);
-    infos.push_back({std::string(name), doc.components(a, concat("point array '", name, "'")), id});
+    infos.push_back({std::string(name), doc.components(a, concat(what, " '", name, "'")), id});
   }
   return infos;
+}
+
+}  // namespace
+
+std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& piece) {
+  return numericArrays(doc, piece.node.child("PointData"), "point array");
+}
+
+std::vector<ArrayInfo> vtuCellArrays(const VtuDocument& doc, const VtuPiece& piece) {
+  return numericArrays(doc, piece.node.child("CellData"), "cell array");
 }
 
 std::vector<std::string> vtuCellArrayNames(const VtuPiece& piece) {

@@ -29,6 +29,9 @@ pugi::xml_node findDataArray(pugi::xml_node parent, std::string_view name);
 // are marked as identifiers.
 std::vector<ArrayInfo> vtuPointArrays(const VtuDocument& doc, const VtuPiece& piece);
 
+// The same for its cell arrays.
+std::vector<ArrayInfo> vtuCellArrays(const VtuDocument& doc, const VtuPiece& piece);
+
 // The names of a piece's cell arrays, in file order.
 std::vector<std::string> vtuCellArrayNames(const VtuPiece& piece);
 

@@ -166,7 +166,9 @@ class VtuReader {
   void readFields() {
     if (!options_.loadFields) return;
     std::vector<ArrayInfo> infos = vtuPointArrays(doc_, pieces_[0]);
-    for (const FieldLoad& load : planFields(src_, infos, options_, cellArrays_)) {
+    const FieldSplit split = splitFieldRequests(infos, vtuCellArrays(doc_, pieces_[0]), options_);
+    readCellFields(split.cells);
+    for (const FieldLoad& load : planFields(src_, infos, split.points, cellArrays_)) {
       const std::string& name = infos[load.array].name;
       std::vector<float> values;
       for (const Piece& p : pieces_) {
@@ -181,6 +183,24 @@ class VtuReader {
           values.insert(values.end(), v.begin(), v.end());
       }
       builder_.addFieldStep(load.field, load.step, std::move(values));
+    }
+  }
+
+  // Cell data asked for as fields: one value per file cell, kept for the cells kept.
+  void readCellFields(const ReadOptions& cells) {
+    std::vector<ArrayInfo> infos = vtuCellArrays(doc_, pieces_[0]);
+    for (const FieldLoad& load : planFields(src_, infos, cells)) {
+      const std::string& name = infos[load.array].name;
+      std::vector<float> values;
+      for (const Piece& p : pieces_) {
+        pugi::xml_node a = findDataArray(p.node.child("CellData"), name);
+        if (!a) throw FileError(src_, "a piece lacks the cell array '", name, "'");
+        std::vector<float> v = toFloats(
+            doc_.decode(a, p.numCells, quoted("cell array", name), infos[load.array].components),
+            load.component, options_.threads);
+        values.insert(values.end(), v.begin(), v.end());
+      }
+      builder_.addCellFieldStep(load.field, load.step, values);
     }
   }
 

@@ -118,6 +118,29 @@ void weldFields(const std::string& source, const std::vector<mesh::UnstructuredM
                       " point fields, the first piece ", pieces[0].fields.size());
 }
 
+// Cell fields follow the cells: per type, piece after piece, as the cells are joined below.
+void joinCellFields(const std::string& source, std::vector<mesh::UnstructuredMesh>& pieces,
+                    mesh::UnstructuredMesh& out) {
+  for (size_t f = 0; f < pieces[0].cellFields.size(); ++f) {
+    mesh::CellField joined{pieces[0].cellFields[f].name, {}};
+    joined.steps.resize(pieces[0].cellFields[f].steps.size());
+    for (auto& p : pieces) {
+      if (p.cellFields.size() != pieces[0].cellFields.size() ||
+          p.cellFields[f].name != joined.name ||
+          p.cellFields[f].steps.size() != joined.steps.size())
+        throw FileError(source, "piece '", p.source, "' does not have the cell data '", joined.name,
+                        "' with the first piece's time steps");
+      for (size_t s = 0; s < joined.steps.size(); ++s)
+        for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+          auto& in = p.cellFields[f].steps[s][t];
+          joined.steps[s][t].insert(joined.steps[s][t].end(), in.begin(), in.end());
+          std::vector<float>().swap(in);
+        }
+    }
+    out.cellFields.push_back(std::move(joined));
+  }
+}
+
 }  // namespace
 
 mesh::UnstructuredMesh weldPieces(const std::string& source,
@@ -131,6 +154,7 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
     throw FileError(source, "the pieces hold ", total, " points, more than 2^32 - 1");
   Welding w = weldPoints(pieces);
   weldFields(source, pieces, w, out);
+  joinCellFields(source, pieces, out);
   for (auto& p : pieces) {  // no longer needed: free them before the cells are copied
     std::vector<glm::dvec3>().swap(p.points);
     std::vector<mesh::Field>().swap(p.fields);

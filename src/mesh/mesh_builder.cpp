@@ -210,6 +210,25 @@ void MeshBuilder::addFieldStep(const std::string& name, uint64_t step, std::vect
   f->steps[step] = std::move(values);
 }
 
+void MeshBuilder::addCellFieldStep(const std::string& name, uint64_t step,
+                                   std::span<const float> perFileCell) {
+  auto it = std::find_if(mesh_.cellFields.begin(), mesh_.cellFields.end(),
+                         [&](const CellField& f) { return f.name == name; });
+  if (it == mesh_.cellFields.end()) {
+    mesh_.cellFields.push_back({name, {}});
+    it = mesh_.cellFields.end() - 1;
+  }
+  if (it->steps.size() <= step) it->steps.resize(step + 1);
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    auto& values = it->steps[step][t];
+    values.reserve(fileCellOf_[t].size());
+    for (uint64_t fileCell : fileCellOf_[t]) {
+      SM_CHECK_LT(fileCell, perFileCell.size());
+      values.push_back(perFileCell[fileCell]);
+    }
+  }
+}
+
 void MeshBuilder::setClusterIds(std::span<const int64_t> perFileCell,
                                 const std::string& arrayName) {
   for (int t = 0; t < kNumCellTypes; ++t) {

@@ -36,6 +36,9 @@ class MeshBuilder {
   void addFieldStep(const std::string& name, uint64_t step, std::vector<float> values);
   void setTimeValues(std::vector<double> times) { mesh_.timeValues = std::move(times); }
   void setCellArrays(std::vector<std::string> names) { mesh_.cellArrays = std::move(names); }
+  // A step of cell data asked for as a field: one value per file cell (skipped cells included),
+  // kept for the cells kept (UnstructuredMesh::cellFields).
+  void addCellFieldStep(const std::string& name, uint64_t step, std::span<const float> perFileCell);
   // Replaces the cluster id of every cell added so far that came from file cell i with ids[i];
   // ids far above the cell count are renumbered densely, in order (renumberSparseClusters).
   void setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName);

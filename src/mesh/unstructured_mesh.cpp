@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/common.hpp>
 
+#include "common/check.h"
 #include "common/error.h"
 
 namespace sm::mesh {
@@ -110,6 +112,8 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
   if (a.fields.size() != b.fields.size())
     throw Error(b.source, ": has ", b.fields.size(), " point fields but the first piece has ",
                 a.fields.size());
+  // Cell fields are averaged onto points where each mesh is read, before any append.
+  SM_CHECK(a.cellFields.empty() && b.cellFields.empty());
   uint64_t offset = a.points.size();
   if (offset + b.points.size() > 0xFFFFFFFFull)
     throw Error(b.source, ": more than 2^32 - 1 points in one rank's share of the mesh");
@@ -138,17 +142,40 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
 
 std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std::string& name) {
   if (cellArrays.empty()) return {};
-  const char* convert =
-      " is not rendered: fields are point data (ParaView's Cell Data to Point Data converts it)";
   if (name.empty()) {
     std::string names;
     for (const auto& n : cellArrays) names += (names.empty() ? "" : ", ") + n;
-    return concat("; its cell data (", names, ")", convert);
+    return concat("; its cell data (", names,
+                  ") is read when --field names it, averaged onto the points");
   }
   // "NAME[k]" asks for a component of NAME.
   const std::string base = name.back() == ']' ? name.substr(0, name.rfind('[')) : name;
   if (std::find(cellArrays.begin(), cellArrays.end(), base) == cellArrays.end()) return {};
-  return concat("; '", base, "' is cell data, which", convert);
+  return concat("; '", base, "' is cell data, read only when --field names it");
+}
+
+void cellFieldsToPoints(UnstructuredMesh& m) {
+  std::vector<uint32_t> uses(m.numPoints(), 0);
+  for (int t = 0; t < kNumCellTypes; ++t)
+    for (uint32_t v : m.cells[t]) ++uses[v];
+  for (CellField& cf : m.cellFields) {
+    Field f{cf.name, {}};
+    for (const auto& perType : cf.steps) {
+      std::vector<double> sum(m.numPoints(), 0.0);
+      for (int t = 0; t < kNumCellTypes; ++t) {
+        const uint32_t nv = numVerts(kAllCellTypes[t]);
+        SM_CHECK_EQ(perType[t].size() * nv, m.cells[t].size());
+        for (size_t i = 0; i < perType[t].size(); ++i)
+          for (uint32_t k = 0; k < nv; ++k) sum[m.cells[t][i * nv + k]] += perType[t][i];
+      }
+      std::vector<float> values(m.numPoints());
+      for (size_t p = 0; p < values.size(); ++p)
+        values[p] = uses[p] ? float(sum[p] / uses[p]) : std::numeric_limits<float>::quiet_NaN();
+      f.steps.push_back(std::move(values));
+    }
+    m.fields.push_back(std::move(f));
+  }
+  m.cellFields.clear();
 }
 
 }  // namespace sm::mesh

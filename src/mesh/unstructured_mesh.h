@@ -21,6 +21,14 @@ struct Field {
   uint64_t numSteps() const { return steps.size(); }
 };
 
+// Cell data asked for as a field: steps[t][type][i] is the value of element i of that type (the
+// order of UnstructuredMesh::cells). Readers hand these over; readMesh averages them onto the
+// points once every piece is joined (cellFieldsToPoints), so a mesh it returns has none.
+struct CellField {
+  std::string name;
+  std::vector<std::array<std::vector<float>, kNumCellTypes>> steps;
+};
+
 struct Range {
   double lo = 0, hi = 0;
   bool empty = true;
@@ -56,9 +64,10 @@ struct UnstructuredMesh {
   std::array<std::vector<int32_t>, kNumCellTypes> clusters;  // cluster id per element
   std::vector<Field> fields;
   std::vector<double> timeValues;  // time of each step, when the file says
-  // The file's cell data arrays (not ids, ghosts or cluster ids). They are not fields: fields are
-  // point data. Kept so that a request for one says what it is instead of "no such field".
+  // The file's cell data arrays (not ids, ghosts or cluster ids). They become fields only when
+  // ReadOptions::fields names them (averaged onto the points); listed for info and messages.
   std::vector<std::string> cellArrays;
+  std::vector<CellField> cellFields;  // cell data asked for as fields, until averaged (above)
   SkippedCells skipped;
   uint64_t invertedFixed = 0;
   // For meshes joined from pieces (.pvtu): point i is point pointOrigin[i] of the pieces read,
@@ -79,10 +88,16 @@ struct UnstructuredMesh {
 Range fieldRange(const Field& f, uint64_t step);
 Range fieldRange(const Field& f);  // all steps
 
-// Text to append to a message about a point field `name` ("NAME" or "NAME[k]") a file lacks:
+// Text to append to a message about a point field `name` ("NAME" or "NAME[k]") a mesh lacks:
 // where NAME is one of its cell arrays (UnstructuredMesh::cellArrays), or no name is given and it
-// has some, says that cell data is not rendered and how to get point data; else empty.
+// has some, says that cell data is read only when named (ReadOptions::fields); else empty.
 std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std::string& name = {});
+
+// Turns every cell field into a point field of the same name: a point's value is the mean of the
+// values of the elements that use it (VTK's Cell Data to Point Data), NaN where none does. On a
+// partitioned mesh this must run on the whole mesh, or points on the border of two parts would
+// take a different value in each.
+void cellFieldsToPoints(UnstructuredMesh& m);
 
 // Appends `b` to `a` (vertex ids of b shifted); fields must match by name and step count.
 void append(UnstructuredMesh& a, const UnstructuredMesh& b);

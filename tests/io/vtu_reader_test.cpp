@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "io/mesh_io.h"
 #include "io_test_util.h"
@@ -98,45 +99,103 @@ TEST(VtuReader, UnknownFieldListsTheArraysTheFileHas) {
   EXPECT_NE(msg.find("3 components"), std::string::npos) << msg;
 }
 
-// Solvers often write cell data only; a request for a cell array must say that it is one (and
-// how to get point data) instead of "no such field". Cluster ids and ghosts are not listed.
-TEST(VtuReader, CellDataIsNamedAsSuchNotAsAMissingField) {
-  const std::string path = fixturePath("mesh_ascii.vtu");
-  EXPECT_EQ(readMesh(path).cellArrays, std::vector<std::string>{"quality"});
-  for (const char* request : {"quality", "quality[0]"}) {
-    ReadOptions o;
-    o.fields = {request};
-    const std::string msg = fileErrorOf([&] { readMesh(path, o); });
-    EXPECT_NE(msg.find("'quality' is cell data"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("Cell Data to Point Data"), std::string::npos) << msg;
-    EXPECT_NE(fileErrorOf([&] { listFieldSteps(path, o); }).find("'quality' is cell data"),
-              std::string::npos);
+// Solvers often write cell data only. Named by a field request it is averaged onto the points
+// (each point the mean of the cells around it, VTK's Cell Data to Point Data), for a .vtu as for
+// the pieces of a .pvtu joined first; not named, it is listed, and messages say what it is.
+std::string twoTets(const std::vector<std::string>& apexes, const std::string& cellData) {
+  std::string pts = "0 0 0  1 0 0  0 1 0";
+  for (const auto& a : apexes) pts += "  " + a;
+  const size_t n = apexes.size();
+  std::string conn, offsets, types;
+  for (size_t i = 0; i < n; ++i) {
+    conn += "0 1 2 " + std::to_string(3 + i) + " ";
+    offsets += std::to_string(4 * (i + 1)) + " ";
+    types += "10 ";
   }
+  return R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
+<UnstructuredGrid><Piece NumberOfPoints=")" +
+         std::to_string(3 + n + 1) + R"(" NumberOfCells=")" + std::to_string(n) + R"(">
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">)" +
+         pts + R"(  5 5 5</DataArray></Points>
+<Cells><DataArray type="Int32" Name="connectivity" format="ascii">)" +
+         conn + R"(</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">)" +
+         offsets + R"(</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">)" +
+         types + R"(</DataArray></Cells>
+<CellData>)" +
+         cellData +
+         R"(</CellData>
+</Piece></UnstructuredGrid></VTKFile>)";
+}
+
+// The value of field `name` (step `step`) at the point at `p`.
+float valueAt(const mesh::UnstructuredMesh& m, const std::string& name, glm::dvec3 p,
+              uint64_t step = 0) {
+  const mesh::Field* f = m.findField(name);
+  EXPECT_NE(f, nullptr) << name;
+  for (size_t i = 0; f && i < m.points.size(); ++i)
+    if (m.points[i] == p) return f->steps[step][i];
+  ADD_FAILURE() << "no point there";
+  return -1;
+}
+
+TEST(VtuReader, CellDataNamedAsAFieldIsAveragedOntoThePoints) {
+  const std::string dir = sm::test::outputDir("VtuReader.CellData");
+  auto array = [](const char* name, const char* values, int comps = 1) {
+    return std::string(R"(<DataArray type="Float32" Name=")") + name + R"(" NumberOfComponents=")" +
+           std::to_string(comps) + R"(" format="ascii">)" + values + "</DataArray>";
+  };
+  const std::string data = array("p@t0", "1 3") + array("p@t1", "10 30") +
+                           array("v", "1 4 3 8", 2) + array("vtkGhostType", "0 0");
+  test::writeText(dir + "/two.vtu", twoTets({"0 0 1", "0 0 -1"}, data));
+  ReadOptions o;
+  o.fields = {"p", "v[1]"};
+  const mesh::UnstructuredMesh m = readMesh(dir + "/two.vtu", o);
+  EXPECT_EQ(m.cellArrays, (std::vector<std::string>{"p@t0", "p@t1", "v"}));
+  EXPECT_TRUE(m.cellFields.empty());
+  ASSERT_EQ(m.findField("p")->numSteps(), 2u);
+  EXPECT_FLOAT_EQ(valueAt(m, "p", {0, 0, 0}), 2.0f);  // on the shared face: both cells
+  EXPECT_FLOAT_EQ(valueAt(m, "p", {0, 1, 0}), 2.0f);
+  EXPECT_FLOAT_EQ(valueAt(m, "p", {0, 0, 1}), 1.0f);  // one cell's apex
+  EXPECT_FLOAT_EQ(valueAt(m, "p", {0, 0, -1}), 3.0f);
+  EXPECT_FLOAT_EQ(valueAt(m, "p", {1, 0, 0}, 1), 20.0f);
+  EXPECT_FLOAT_EQ(valueAt(m, "v[1]", {1, 0, 0}), 6.0f);
+  EXPECT_FLOAT_EQ(valueAt(m, "v[1]", {0, 0, -1}), 8.0f);
+  EXPECT_TRUE(std::isnan(valueAt(m, "p", {5, 5, 5})));  // in no cell: never sampled
+  // Not named: listed, not read; a point array of the same name would win.
+  EXPECT_EQ(readMesh(dir + "/two.vtu").fields.size(), 0u);
+
+  // The same cells as two pieces: joined before averaging, so the shared face takes both cells.
+  std::filesystem::create_directories(dir + "/p");
+  test::writeText(dir + "/p/a.vtu", twoTets({"0 0 1"}, array("p", "1")));
+  test::writeText(dir + "/p/b.vtu", twoTets({"0 0 -1"}, array("p", "3")));
+  test::writeText(dir + "/p.pvtu", R"(<?xml version="1.0"?>
+<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>
+<Piece Source="p/a.vtu"/><Piece Source="p/b.vtu"/></PUnstructuredGrid></VTKFile>)");
+  ReadOptions p;
+  p.fields = {"p"};
+  const mesh::UnstructuredMesh joined = readMesh(dir + "/p.pvtu", p);
+  EXPECT_FLOAT_EQ(valueAt(joined, "p", {0, 0, 0}), 2.0f);
+  EXPECT_FLOAT_EQ(valueAt(joined, "p", {0, 0, 1}), 1.0f);
+  EXPECT_FLOAT_EQ(valueAt(joined, "p", {0, 0, -1}), 3.0f);
+  EXPECT_TRUE(asksForCellData(dir + "/p.pvtu", p));
+  EXPECT_FALSE(asksForCellData(dir + "/p.pvtu", ReadOptions{}));
+  // Streaming reads point data only (the app reads cell data whole): said so, not "no such array".
+  EXPECT_NE(fileErrorOf([&] { listFieldSteps(dir + "/p.pvtu", p); }).find("'p' is cell data"),
+            std::string::npos);
+
+  const std::string fixture = fixturePath("mesh_ascii.vtu");
+  EXPECT_EQ(readMesh(fixture).cellArrays, std::vector<std::string>{"quality"});
   ReadOptions other;
   other.fields = {"density"};
-  EXPECT_EQ(fileErrorOf([&] { readMesh(path, other); }).find("cell data"), std::string::npos);
+  EXPECT_EQ(fileErrorOf([&] { readMesh(fixture, other); }).find("cell data"), std::string::npos);
   EXPECT_EQ(mesh::cellArrayHint({"quality"}, "density"), "");
-  EXPECT_NE(mesh::cellArrayHint({"quality", "rho"}).find("its cell data (quality, rho)"),
+  EXPECT_NE(mesh::cellArrayHint({"quality", "rho"})
+                .find("its cell data (quality, rho) is read when "
+                      "--field names it"),
             std::string::npos);
-  // A .pvtu's pieces: the welded mesh keeps the list, a cluster subset too.
-  const std::string dir = sm::test::outputDir("VtuReader.CellData");
-  for (int k = 0; k < 2; ++k)
-    test::writeText(dir + "/c_" + std::to_string(k) + ".vtu",
-                    R"(<?xml version="1.0"?>
-<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
-<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
-<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">)" +
-                        std::to_string(k) + R"( 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>
-<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>
-<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>
-<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>
-<CellData><DataArray type="Float32" Name="vtkGhostType" format="ascii">0</DataArray>
-<DataArray type="Float32" Name="rho" format="ascii">1.5</DataArray></CellData>
-</Piece></UnstructuredGrid></VTKFile>)");
-  test::writeText(dir + "/c.pvtu", R"(<?xml version="1.0"?>
-<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>
-<Piece Source="c_0.vtu"/><Piece Source="c_1.vtu"/></PUnstructuredGrid></VTKFile>)");
-  EXPECT_EQ(readMesh(dir + "/c.pvtu").cellArrays, std::vector<std::string>{"rho"});
 }
 
 TEST(VtuReader, UnknownClusterArrayListsTheCellArrays) {

@@ -59,7 +59,13 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   app::checkImageSize(job);
   const int firstStep = parseViewStep(job.time);
   Timer load;
-  share_ = app::loadRankShare(job.mesh, job.share, coll);
+  // The viewer cycles through every point field; cell data is read only when named, as the one
+  // field shown (averaged onto the points).
+  app::ShareOptions share = job.share;
+  io::ReadOptions named = share.read;
+  named.fields = {job.field};
+  if (!job.field.empty() && io::asksForCellData(job.mesh, named)) share.read = named;
+  share_ = app::loadRankShare(job.mesh, share, coll);
   loadSeconds_ = load.seconds();
   choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
   choices_.colormaps = colormapChoices(job.colormap);

@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# Cell data rendered through --field: averaged onto the points of the whole mesh, the same on one
+# rank and on three, and the same image as the point data a user would get from ParaView's Cell
+# Data to Point Data filter (computed here independently, in Python).
+#   cell_data_test.sh SHELLMARCH WORK_DIR
+set -euo pipefail
+sm=$1 work=$2
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mkdir -p "$work" && cd "$work"
+rm -rf cells cells.pvtu ./*.pfm
+
+python3 - <<'PY'
+import math, os, struct
+
+n = 6  # hexahedra per side; three pieces of two slabs each along x
+f32 = lambda v: struct.unpack('f', struct.pack('f', v))[0]
+num = lambda v: '%.9g' % f32(v)
+point = lambda i, j, k: (i / n, j / n, k / n)
+def cell_value(i, j, k):
+    x, y, z = (i + 0.5) / n, (j + 0.5) / n, (k + 0.5) / n
+    return f32(1.0 + math.sin(3 * x) * y + 0.5 * z * z)
+def corners(i, j, k):
+    return [(i, j, k), (i + 1, j, k), (i + 1, j + 1, k), (i, j + 1, k),
+            (i, j, k + 1), (i + 1, j, k + 1), (i + 1, j + 1, k + 1), (i, j + 1, k + 1)]
+
+def vtu(path, cells, point_values=None):
+    ids, pts = {}, []
+    for c in cells:
+        for p in corners(*c):
+            if p not in ids:
+                ids[p] = len(pts)
+                pts.append(p)
+    conn = ' '.join(str(ids[p]) for c in cells for p in corners(*c))
+    offsets = ' '.join(str(8 * (m + 1)) for m in range(len(cells)))
+    xyz = ' '.join(num(v) for p in pts for v in point(*p))
+    if point_values is None:
+        c = [cell_value(*q) for q in cells]
+        data = ('<CellData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
+                '<DataArray type="Float32" Name="v" NumberOfComponents="2" format="ascii">%s'
+                '</DataArray></CellData>') % (' '.join(num(v) for v in c),
+                                              ' '.join(num(v) + ' ' + num(2 * v) for v in c))
+    else:
+        data = ('<PointData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
+                '</PointData>') % ' '.join(num(point_values[p]) for p in pts)
+    with open(path, 'w') as out:
+        out.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" '
+                  'byte_order="LittleEndian"><UnstructuredGrid>'
+                  '<Piece NumberOfPoints="%d" NumberOfCells="%d">%s'
+                  '<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">%s'
+                  '</DataArray></Points><Cells>'
+                  '<DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>'
+                  '<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray>'
+                  '<DataArray type="UInt8" Name="types" format="ascii">%s</DataArray>'
+                  '</Cells></Piece></UnstructuredGrid></VTKFile>\n'
+                  % (len(pts), len(cells), data, xyz, conn, offsets, ' '.join(['12'] * len(cells))))
+
+allcells = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+os.makedirs('cells', exist_ok=True)
+for piece in range(3):
+    vtu('cells/cells_%d.vtu' % piece, [c for c in allcells if c[0] // 2 == piece])
+with open('cells.pvtu', 'w') as out:
+    out.write('<?xml version="1.0"?>\n<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>'
+              + ''.join('<Piece Source="cells/cells_%d.vtu"/>' % p for p in range(3))
+              + '</PUnstructuredGrid></VTKFile>\n')
+# The oracle: each point the mean of the cells around it, in double, stored as float.
+sums = {}
+for c in allcells:
+    for p in corners(*c):
+        s, k = sums.get(p, (0.0, 0))
+        sums[p] = (s + cell_value(*c), k + 1)
+vtu('points.vtu', allcells, {p: s / k for p, (s, k) in sums.items()})
+PY
+
+fails=0
+check() {  # check WHAT FILE_A FILE_B: the two images must be identical to the bit
+  if cmp -s "$2" "$3"; then echo "ok: $1"; else echo "FAIL: $1 ($2 and $3 differ)"; fails=$((fails + 1)); fi
+}
+args=(--view iso --size 96x96 --range 0.9,2.5)
+"$sm" render cells.pvtu --field c "${args[@]}" --out one.pfm
+mpiexec -n 3 --oversubscribe "$sm" render cells.pvtu --field c "${args[@]}" --out three.pfm
+"$sm" render points.vtu --field c "${args[@]}" --out oracle.pfm
+"$sm" render cells.pvtu --field 'v[1]' --view iso --size 96x96 --range 1.8,5 --out component.pfm
+# Three ranks composite in another order than one: float rounding, at most a few 1e-7 (a seam of
+# points averaged over one rank's cells only would be off by percent).
+python3 - one.pfm three.pfm <<'PY' && echo "ok: cell data on 1 and 3 ranks" || { echo "FAIL: cell data on 1 and 3 ranks"; fails=$((fails + 1)); }
+import struct, sys
+def load(path):
+    data = open(path, 'rb').read()
+    lines = data.split(b'\n', 3)
+    w, h = map(int, lines[1].split())
+    return struct.unpack('<%df' % (w * h * 3), lines[3][:w * h * 12])
+a, b = load(sys.argv[1]), load(sys.argv[2])
+worst = max(abs(x - y) for x, y in zip(a, b))
+print('largest difference between 1 and 3 ranks:', worst)
+sys.exit(0 if worst <= 1e-6 else 1)
+PY
+check "cell data as the independently averaged point data" one.pfm oracle.pfm
+check "a component of cell data (2c over twice the range)" one.pfm component.pfm
+# The image is not empty (a blank image would match the others too).
+python3 - <<'PY' || fails=$((fails + 1))
+import struct, sys
+data = open('one.pfm', 'rb').read()
+lines = data.split(b'\n', 3)
+w, h = map(int, lines[1].split())
+vals = struct.unpack('<%df' % (w * h * 3), lines[3][:w * h * 12])
+lit = sum(1 for v in vals if v > 0.01)
+print('lit values:', lit)
+sys.exit(0 if lit > w * h else 1)
+PY
+exit $fails
