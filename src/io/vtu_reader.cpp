@@ -168,40 +168,38 @@ class VtuReader {
     std::vector<ArrayInfo> infos = vtuPointArrays(doc_, pieces_[0]);
     const FieldSplit split = splitFieldRequests(infos, vtuCellArrays(doc_, pieces_[0]), options_);
     readCellFields(split.cells);
-    for (const FieldLoad& load : planFields(src_, infos, split.points, cellArrays_)) {
-      const std::string& name = infos[load.array].name;
-      std::vector<float> values;
-      for (const Piece& p : pieces_) {
-        pugi::xml_node a = findDataArray(p.node.child("PointData"), name);
-        if (!a) throw FileError(src_, "a piece lacks the point array '", name, "'");
-        std::vector<float> v = toFloats(
-            doc_.decode(a, p.numPoints, quoted("point array", name), infos[load.array].components),
-            load.component, options_.threads);
-        if (values.empty())
-          values = std::move(v);
-        else
-          values.insert(values.end(), v.begin(), v.end());
-      }
-      builder_.addFieldStep(load.field, load.step, std::move(values));
-    }
+    for (const FieldLoad& load : planFields(src_, infos, split.points, cellArrays_))
+      builder_.addFieldStep(load.field, load.step, piecesValues(Data::Points, infos, load));
   }
 
   // Cell data asked for as fields: one value per file cell, kept for the cells kept.
   void readCellFields(const ReadOptions& cells) {
     std::vector<ArrayInfo> infos = vtuCellArrays(doc_, pieces_[0]);
-    for (const FieldLoad& load : planFields(src_, infos, cells)) {
-      const std::string& name = infos[load.array].name;
-      std::vector<float> values;
-      for (const Piece& p : pieces_) {
-        pugi::xml_node a = findDataArray(p.node.child("CellData"), name);
-        if (!a) throw FileError(src_, "a piece lacks the cell array '", name, "'");
-        std::vector<float> v = toFloats(
-            doc_.decode(a, p.numCells, quoted("cell array", name), infos[load.array].components),
-            load.component, options_.threads);
+    for (const FieldLoad& load : planFields(src_, infos, cells))
+      builder_.addCellFieldStep(load.field, load.step, piecesValues(Data::Cells, infos, load));
+  }
+
+  enum class Data { Points, Cells };
+
+  // One load's values from every piece, one after another (points or cells of the whole file).
+  std::vector<float> piecesValues(Data data, const std::vector<ArrayInfo>& infos,
+                                  const FieldLoad& load) {
+    const bool cells = data == Data::Cells;
+    const std::string& name = infos[load.array].name;
+    const char* what = cells ? "cell array" : "point array";
+    std::vector<float> values;
+    for (const Piece& p : pieces_) {
+      pugi::xml_node a = findDataArray(p.node.child(cells ? "CellData" : "PointData"), name);
+      if (!a) throw FileError(src_, "a piece lacks the ", what, " '", name, "'");
+      std::vector<float> v = toFloats(doc_.decode(a, cells ? p.numCells : p.numPoints,
+                                                  quoted(what, name), infos[load.array].components),
+                                      load.component, options_.threads);
+      if (values.empty())
+        values = std::move(v);
+      else
         values.insert(values.end(), v.begin(), v.end());
-      }
-      builder_.addCellFieldStep(load.field, load.step, values);
     }
+    return values;
   }
 
   void readTimeValues() {
