@@ -230,9 +230,9 @@ void MpiCommunicator::broadcast(void* data, uint64_t bytes, int root) {
 
 void MpiCommunicator::abort(const std::string& message) {
   // A bad input fails every rank the same way: rank 0 reports and aborts the group at once; the
-  // others wait a moment first, so that one line is printed instead of one per rank (and Open
+  // others wait two seconds first, so that one line is printed instead of one per rank (and Open
   // MPI's own complaints about simultaneous aborts). A rank failing alone still reports.
-  if (rank_ != 0) std::this_thread::sleep_for(std::chrono::seconds(1));
+  if (rank_ != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
   std::fprintf(stderr, "shellmarch: rank %d of %d failed: %s\n", rank_, size_, message.c_str());
   std::fflush(stderr);
   MPI_Abort(MPI_COMM_WORLD, 1);

@@ -5,9 +5,9 @@
 #include <string>
 #include <utility>
 
-#include <CLI/CLI.hpp>
 #include <glm/vec3.hpp>
 
+#include "app/cli_checks.h"
 #include "compositor/deep_compositor.h"
 #include "render/render_settings.h"
 
@@ -27,11 +27,5 @@ comp::PixelOwnership parsePixelOwnership(const std::string& value);    // interl
 comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
 render::Integration parseIntegration(const std::string& value);        // sampled | exact
 render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
-
-// Option checks run while parsing, before any work: an empty name ("--field ''" would otherwise
-// mean "the default"), and a file to write whose folder exists and which is not a folder (a bad
-// --json found only after a benchmark ran for minutes).
-CLI::Validator nonEmptyName();
-CLI::Validator writableFile();
 
 }  // namespace sm::app

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "common/error.h"
 #include "io/mesh_io.h"
@@ -119,8 +120,12 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
         << "\n";
   }
   std::string names;  // cell data not asked for (--field NAME averages it onto the points)
-  for (const auto& n : m.cellArrays)
-    if (!m.findField(n)) names += (names.empty() ? "" : ", ") + n;
+  for (const auto& n : m.cellArrays) {
+    const bool loaded = std::any_of(m.fields.begin(), m.fields.end(), [&](const mesh::Field& f) {
+      return f.name == n || f.name.rfind(n + "[", 0) == 0;  // itself or a component
+    });
+    if (!loaded) names += (names.empty() ? "" : ", ") + n;
+  }
   if (!names.empty())
     row("cell data", printableLine(names) + " (--field NAME renders it, averaged to the points)");
 }
@@ -146,10 +151,13 @@ void registerInfo(CLI::App& app) {
   sub->add_option("file", o->file, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
   sub->add_flag("--json", o->json, "Print one JSON object instead of text");
   sub->add_option("--field", o->fields,
-                  "Point field to load, NAME or NAME[k] (repeatable; default: all)")
+                  "Field to load, NAME or NAME[k]; cell data is averaged onto the points "
+                  "(repeatable; default: every point field)")
       ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  sub->add_option("--cluster-array", o->clusterArray, "Cell array holding cluster ids");
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(nonEmptyName());
+  sub->add_option("--cluster-array", o->clusterArray, "Cell array holding cluster ids")
+      ->check(nonEmptyName());
   sub->add_option("--pieces", o->pieces, ".pvtu pieces to read, e.g. 0,3 (default: all)")
       ->delimiter(',');
   sub->callback([o] { runInfo(*o); });

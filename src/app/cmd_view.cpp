@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/cli_parsers.h"
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/run_parallel.h"
 #include "app/scene_options.h"

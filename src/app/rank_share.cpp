@@ -102,14 +102,22 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives&
 
 }  // namespace
 
+bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Collectives& coll) {
+  if (read.fields.empty()) return false;  // the same on every rank: no collective needed
+  // Rank 0 reads the header and tells the others: one read instead of one per rank, and every
+  // rank takes the same path through the collectives that follow.
+  const double mine = coll.rank() == 0 && io::asksForCellData(path, read) ? 1.0 : 0.0;
+  return coll.max(mine) > 0.0;
+}
+
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
   // Cell data is averaged onto the points of the whole mesh (a point between two ranks' pieces
   // needs the cells of both), so every rank reads it whole, with every step, and takes its share.
-  const bool cellData = io::asksForCellData(path, o.read);
-  ShareOptions read = o;
-  read.streamSteps = o.streamSteps && !cellData;
+  const bool cellData = fieldsAreCellData(path, o.read, coll);
+  ShareOptions reading = o;
+  reading.streamSteps = o.streamSteps && !cellData;
   const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0 && !cellData;
-  RankShare s = pieces ? readPieces(path, read, coll) : readWhole(path, read, coll);
+  RankShare s = pieces ? readPieces(path, reading, coll) : readWhole(path, reading, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);
   render::ElementSizeSum local = render::elementSizeSum(s.mesh);
   s.elementSize.sum = coll.sum(local.sum);

@@ -39,9 +39,13 @@ struct RankShare {
   std::optional<StepStream> stream;  // set when the mesh holds one step per field
 };
 
+// True when read.fields names cell data (io::asksForCellData), decided by rank 0 for all ranks.
+bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Collectives& coll);
+
 // Reads what this rank needs. A .pvtu is split by pieces: each rank reads only its own pieces
-// (assigned to balance element counts, from the pieces' headers). Other formats are read whole
-// on every rank and split by cluster id.
+// (assigned to balance element counts, from the pieces' headers). Other formats, and any mesh
+// whose requested field is cell data (averaged over the whole mesh), are read whole on every rank
+// and split by cluster id.
 RankShare loadRankShare(const std::string& path, const ShareOptions& options, Collectives& coll);
 
 }  // namespace sm::app

@@ -15,7 +15,10 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                      const std::string& timeHelp) {
   auto& t = raw.text;
   cmd->add_option("mesh", job.mesh, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
-  cmd->add_option("--field", job.field, "Point field to render (default: the first)")
+  cmd->add_option(
+         "--field", job.field,
+         "Field to render: NAME, a component NAME[k], or cell data (averaged onto the points); "
+         "default: the first point field")
       ->check(nonEmptyName());
   cmd->add_option("--time", job.time, timeHelp);
   cmd->add_option("--size", t["--size"], "Image size WxH (default 512x512)");

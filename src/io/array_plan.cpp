@@ -16,7 +16,8 @@ struct Group {
   std::vector<std::pair<uint64_t, size_t>> steps;  // (step, array index)
 };
 
-std::vector<Group> groupArrays(const std::string& source, const std::vector<ArrayInfo>& arrays) {
+std::vector<Group> groupArrays(const std::string& source, const std::vector<ArrayInfo>& arrays,
+                               std::string_view kind) {
   std::vector<Group> groups;
   for (size_t i = 0; i < arrays.size(); ++i) {
     StepName s = splitStepName(arrays[i].name);
@@ -28,14 +29,14 @@ std::vector<Group> groupArrays(const std::string& source, const std::vector<Arra
     }
     Group& g = *it;
     if (g.components != arrays[i].components)
-      throw FileError(source, "time steps of point array '", g.base, "' have ", g.components,
+      throw FileError(source, "time steps of ", kind, " array '", g.base, "' have ", g.components,
                       " and ", arrays[i].components, " components");
     const uint64_t step = s.step.value_or(0);
     const bool clash =
         (s.step ? g.plain : !g.steps.empty()) ||
         std::any_of(g.steps.begin(), g.steps.end(), [&](const auto& e) { return e.first == step; });
     if (clash)
-      throw FileError(source, "point array '", arrays[i].name, "' repeats ",
+      throw FileError(source, kind, " array '", arrays[i].name, "' repeats ",
                       s.step ? "a time step" : "a name", " of field '", g.base, "'");
     g.plain = g.plain || !s.step;
     g.steps.emplace_back(step, i);
@@ -68,14 +69,15 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
 }
 
 void addGroup(std::vector<FieldLoad>& loads, const std::string& source, const Group& g,
-              int component, const std::string& field, std::optional<uint64_t> onlyStep) {
+              int component, const std::string& field, std::optional<uint64_t> onlyStep,
+              std::string_view kind) {
   // Steps run 0 .. n-1 (g.steps is sorted), checked before anything is read or sized: a step
   // number is a name's suffix, and "p@t99999999999" must not size a field with that many steps.
   // With --time, the steps not loaded are checked too, so that a file missing one fails as a full
   // read does.
   for (uint64_t i = 0; i < g.steps.size(); ++i)
     if (g.steps[i].first != i)
-      throw FileError(source, "point field '", field, "' has no values for time step ", i);
+      throw FileError(source, kind, " field '", field, "' has no values for time step ", i);
   if (!onlyStep) {
     for (const auto& [step, array] : g.steps) loads.push_back({array, component, field, step});
     return;
@@ -104,13 +106,14 @@ StepName splitStepName(std::string_view name) {
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
                                   const ReadOptions& options,
-                                  const std::vector<std::string>& cellArrays) {
+                                  const std::vector<std::string>& cellArrays,
+                                  std::string_view kind) {
   std::vector<FieldLoad> loads;
   if (!options.loadFields) return loads;
-  const std::vector<Group> groups = groupArrays(source, pointArrays);
+  const std::vector<Group> groups = groupArrays(source, pointArrays, kind);
   if (options.fields.empty()) {
     for (const auto& g : groups)
-      if (!g.identifier) addGroup(loads, source, g, -1, g.base, options.step);
+      if (!g.identifier) addGroup(loads, source, g, -1, g.base, options.step, kind);
     return loads;
   }
   std::vector<std::string> done;
@@ -122,19 +125,19 @@ std::vector<FieldLoad> planFields(const std::string& source,
                           [&](const Group& g) { return g.base == n; });
     };
     if (auto it = byName(request); it != groups.end()) {
-      addGroup(loads, source, *it, -1, request, options.step);
+      addGroup(loads, source, *it, -1, request, options.step, kind);
       continue;
     }
     auto split = splitComponent(request);
     auto it = split ? byName(split->first) : groups.end();
     if (it == groups.end())
-      throw FileError(source, "has no point array '", split ? split->first : request,
-                      "' (point arrays: ", listNames(groups), ")",
+      throw FileError(source, "has no ", kind, " array '", split ? split->first : request, "' (",
+                      kind, " arrays: ", listNames(groups), ")",
                       mesh::cellArrayHint(cellArrays, request));
     if (uint32_t(split->second) >= it->components)
-      throw FileError(source, "field '", request, "': point array '", it->base, "' has ",
+      throw FileError(source, "field '", request, "': ", kind, " array '", it->base, "' has ",
                       it->components, it->components == 1 ? " component" : " components");
-    addGroup(loads, source, *it, split->second, request, options.step);
+    addGroup(loads, source, *it, split->second, request, options.step, kind);
   }
   return loads;
 }
@@ -191,10 +194,13 @@ FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
 std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
                                         const ReadOptions& options) {
   std::vector<std::string> data;
-  for (const std::string& n : names)
-    if (!isBookkeepingArray(n) && n != options.clusterArray && n != "cluster" && n != "partition" &&
-        n != "vtkProcessId")
-      data.push_back(n);
+  for (const std::string& n : names) {
+    if (isBookkeepingArray(n) || n == options.clusterArray || n == "cluster" || n == "partition" ||
+        n == "vtkProcessId")
+      continue;
+    std::string base = splitStepName(n).base;  // "p@t0", "p@t1": the field p
+    if (std::find(data.begin(), data.end(), base) == data.end()) data.push_back(std::move(base));
+  }
   return data;
 }
 

@@ -39,10 +39,12 @@ StepName splitStepName(std::string_view name);
 // Throws sm::FileError(source, ...) for a requested name the file lacks (listing what it has), a
 // component out of range, or a name given both plain and with time steps.
 // `cellArrays` (dataCellArrays) only make that message say when a name is cell data.
+// `kind` names the arrays in messages ("point", or "cell" when planning cell data).
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
                                   const ReadOptions& options,
-                                  const std::vector<std::string>& cellArrays = {});
+                                  const std::vector<std::string>& cellArrays = {},
+                                  std::string_view kind = "point");
 
 // Which of options.fields a reader loads from point data and which from cell data (to be averaged
 // onto the points): a request is cell data when it names no point array (by its name, a component
@@ -55,8 +57,9 @@ struct FieldSplit {
 FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
                               const std::vector<ArrayInfo>& cellArrays, const ReadOptions& options);
 
-// The cell arrays among `names` that hold data: not bookkeeping (isBookkeepingArray) and not
-// cluster ids (options.clusterArray, "cluster", "partition", "vtkProcessId").
+// The cell data among the cell arrays `names`, by field name (the steps "NAME@tK" of one field
+// listed once, as NAME): not bookkeeping (isBookkeepingArray) and not cluster ids
+// (options.clusterArray, "cluster", "partition", "vtkProcessId").
 std::vector<std::string> dataCellArrays(const std::vector<std::string>& names,
                                         const ReadOptions& options);
 

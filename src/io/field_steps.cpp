@@ -45,19 +45,34 @@ std::vector<FieldStepCount> countSteps(const std::string& source,
 // Every step of every field options ask for (ReadOptions::step narrows loads, not the listing).
 std::vector<FieldLoad> planAllSteps(const std::string& source, const std::vector<ArrayInfo>& arrays,
                                     const ReadOptions& options,
-                                    const std::vector<std::string>& cellArrays) {
+                                    const std::vector<std::string>& cellArrays,
+                                    std::string_view kind = "point") {
+  if (!options.loadFields) return {};
   ReadOptions all = options;
   all.step.reset();
-  all.loadFields = true;
-  return planFields(source, arrays, all, cellArrays);
+  return planFields(source, arrays, all, cellArrays, kind);
 }
 
 std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOptions& options) {
   FileBytes bytes = FileBytes::open(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
   std::vector<VtuPiece> pieces = vtuPieces(doc);
-  return countSteps(file, planAllSteps(file, vtuPointArrays(doc, pieces[0]), options,
-                                       dataCellArrays(vtuCellArrayNames(pieces[0]), options)));
+  const std::vector<ArrayInfo> points = vtuPointArrays(doc, pieces[0]);
+  if (options.fields.empty() || !options.loadFields) {  // every point array; no cell data
+    ReadOptions all = options;
+    all.loadFields = true;
+    return countSteps(file, planAllSteps(file, points, all, {}));
+  }
+  // Cell data named as a field is a field readMesh loads too (averaged onto the points).
+  const std::vector<ArrayInfo> cells = vtuCellArrays(doc, pieces[0]);
+  const FieldSplit split = splitFieldRequests(points, cells, options);
+  std::vector<FieldStepCount> steps =
+      countSteps(file, planAllSteps(file, points, split.points,
+                                    dataCellArrays(vtuCellArrayNames(pieces[0]), options)));
+  if (split.cells.loadFields)
+    for (FieldStepCount& f : countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell")))
+      steps.push_back(std::move(f));
+  return steps;
 }
 
 // The pieces read together are welded, which needs the same fields and steps in each.
@@ -105,6 +120,10 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
   const std::vector<ArrayInfo> arrays = vtuPointArrays(doc, pieces[0]);
   ReadOptions one;
   one.fields = {field};
+  if (splitFieldRequests(arrays, vtuCellArrays(doc, pieces[0]), one).cells.loadFields)
+    throw FileError(file, "'", field,
+                    "' is cell data: it is averaged onto the points of the whole mesh, so it is "
+                    "read with the mesh (readMesh), not one step at a time");
   const std::vector<FieldLoad> loads = planFields(file, arrays, one);
   auto load =
       std::find_if(loads.begin(), loads.end(), [&](const FieldLoad& l) { return l.step == step; });

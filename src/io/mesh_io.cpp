@@ -1,5 +1,7 @@
 #include "io/mesh_io.h"
 
+#include <cmath>
+
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"
@@ -29,9 +31,17 @@ void checkNoPieces(const std::string& name, const ReadOptions& options) {
 // Cell data asked for as fields becomes point data once the whole mesh is read (every piece of a
 // .pvtu joined), so that points between pieces average the cells of both.
 mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m) {
-  for (const mesh::CellField& f : m.cellFields)
+  for (const mesh::CellField& f : m.cellFields) {
     log::info(m.source, ": field '", f.name,
               "' is cell data: each point takes the mean of the cells around it");
+    uint64_t nonFinite = 0;
+    for (const auto& step : f.steps)
+      for (const auto& values : step)
+        for (float v : values) nonFinite += !std::isfinite(v);
+    if (nonFinite)
+      log::warning(m.source, ": cell data '", f.name, "' has ", nonFinite,
+                   " non-finite values; the points of those cells render transparent");
+  }
   mesh::cellFieldsToPoints(m);
   return m;
 }

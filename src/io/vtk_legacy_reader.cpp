@@ -66,10 +66,12 @@ class LegacyReader {
   bool askedForAsField(std::string_view name) const {
     if (!options_.loadFields) return false;
     const std::string base = splitStepName(name).base;
-    for (const std::string& r : options_.fields)
+    for (const std::string& r : options_.fields) {
+      const size_t open = r.rfind('[');
       if (r == base ||
-          (r.back() == ']' && r.compare(0, r.rfind('['), base) == 0 && r.rfind('[') == base.size()))
+          (!r.empty() && r.back() == ']' && open == base.size() && r.compare(0, open, base) == 0))
         return true;
+    }
     return false;
   }
 
@@ -297,7 +299,7 @@ void LegacyReader::addFields(mesh::MeshBuilder& b) {
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
   for (const auto& a : cellArrays_) cellInfos.push_back({a.name, a.data.components, a.identifier});
   const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
-  for (const FieldLoad& load : planFields(src_, cellInfos, split.cells)) {
+  for (const FieldLoad& load : planFields(src_, cellInfos, split.cells, {}, "cell")) {
     if (cellArrays_[load.array].data.tuples != numCells_)
       throw FileError(src_, "cell array '", cellArrays_[load.array].name, "' does not have ",
                       numCells_, " values");

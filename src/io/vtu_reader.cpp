@@ -166,16 +166,18 @@ class VtuReader {
   void readFields() {
     if (!options_.loadFields) return;
     std::vector<ArrayInfo> infos = vtuPointArrays(doc_, pieces_[0]);
-    const FieldSplit split = splitFieldRequests(infos, vtuCellArrays(doc_, pieces_[0]), options_);
-    readCellFields(split.cells);
+    // Cell arrays are looked at only when fields are named: only then can one be a field.
+    const std::vector<ArrayInfo> cellInfos =
+        options_.fields.empty() ? std::vector<ArrayInfo>{} : vtuCellArrays(doc_, pieces_[0]);
+    const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
+    readCellFields(cellInfos, split.cells);
     for (const FieldLoad& load : planFields(src_, infos, split.points, cellArrays_))
       builder_.addFieldStep(load.field, load.step, piecesValues(Data::Points, infos, load));
   }
 
   // Cell data asked for as fields: one value per file cell, kept for the cells kept.
-  void readCellFields(const ReadOptions& cells) {
-    std::vector<ArrayInfo> infos = vtuCellArrays(doc_, pieces_[0]);
-    for (const FieldLoad& load : planFields(src_, infos, cells))
+  void readCellFields(const std::vector<ArrayInfo>& infos, const ReadOptions& cells) {
+    for (const FieldLoad& load : planFields(src_, infos, cells, {}, "cell"))
       builder_.addCellFieldStep(load.field, load.step, piecesValues(Data::Cells, infos, load));
   }
 

@@ -310,9 +310,10 @@ void writeVtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
 
 namespace {
 
-// Pieces are written under staging names and renamed into place only once every one is complete:
-// a failure part way (disk full, a folder where a piece goes) then leaves an existing data set of
-// the same name as it was, instead of some of its pieces replaced by the new mesh's.
+// Pieces and index are written under staging names and renamed into place only once every one is
+// complete, the index last: a failure part way (disk full, a folder where a piece goes) then
+// leaves an existing data set of the same name as it was, instead of some of its pieces replaced
+// by the new mesh's. (Pieces of an older, larger set beyond the new count stay, unnamed.)
 class StagedPieces {
  public:
   StagedPieces(fs::path folder, bool createdFolder)
@@ -322,23 +323,22 @@ class StagedPieces {
   ~StagedPieces() {
     if (committed_) return;
     std::error_code ec;
-    for (const auto& [staged, final] : files_) fs::remove(staged, ec);
+    for (const auto& [staged, target] : files_) fs::remove(staged, ec);
     if (createdFolder_) fs::remove(folder_, ec);  // only if empty
   }
-  // Where to write piece `file` now.
-  std::string stage(const std::string& file) {
-    const fs::path final = folder_ / file;
+  // Where to write the file that belongs at `target` now.
+  std::string stage(const fs::path& target) {
     std::error_code ec;
-    if (fs::exists(final, ec) && !fs::is_regular_file(final, ec))
-      throw FileError(final.string(), "cannot write: exists and is not a regular file");
-    files_.emplace_back(folder_ / (file + ".staged"), final);
+    if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
+      throw FileError(target.string(), "cannot write: exists and is not a regular file");
+    files_.emplace_back(fs::path(target.string() + ".staged"), target);
     return files_.back().first.string();
   }
   void commit() {
-    for (const auto& [staged, final] : files_) {
+    for (const auto& [staged, target] : files_) {
       std::error_code ec;
-      fs::rename(staged, final, ec);
-      if (ec) throw FileError(final.string(), "cannot write: ", ec.message());
+      fs::rename(staged, target, ec);
+      if (ec) throw FileError(target.string(), "cannot write: ", ec.message());
     }
     committed_ = true;
   }
@@ -346,7 +346,7 @@ class StagedPieces {
  private:
   fs::path folder_;
   bool createdFolder_;
-  std::vector<std::pair<fs::path, fs::path>> files_;  // (staged, final)
+  std::vector<std::pair<fs::path, fs::path>> files_;  // (staged, target)
   bool committed_ = false;
 };
 
@@ -390,12 +390,13 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   std::string pieces;
   for (size_t k = 0; k < byCluster.size(); ++k) {
     const std::string file = concat(stem, "_", k, ".vtu");
-    writeOne(staged.stage(file), extractPiece(mesh, int32_t(k), byCluster[k], local), options);
+    writeOne(staged.stage(folder / file), extractPiece(mesh, int32_t(k), byCluster[k], local),
+             options);
     pieces += concat("    <Piece Source=\"", xmlEscape(stem + "/" + file), "\"/>\n");
   }
-  staged.commit();
   const std::string x = pvtuIndex(mesh, pieces);
-  writeBytesAtomically(path, {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
+  writeBytesAtomically(staged.stage(p), {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
+  staged.commit();
 }
 
 }  // namespace sm::io

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cell data rendered through --field: averaged onto the points of the whole mesh, the same on one
-# rank and on three, and the same image as the point data a user would get from ParaView's Cell
-# Data to Point Data filter (computed here independently, in Python).
+# rank and on three, and the same image as the point data that mean gives (VTK's Cell Data to
+# Point Data on a mesh of volume cells only), computed here independently, in Python.
 #   cell_data_test.sh SHELLMARCH WORK_DIR
 set -euo pipefail
 sm=$1 work=$2

@@ -153,7 +153,7 @@ TEST(VtuReader, CellDataNamedAsAFieldIsAveragedOntoThePoints) {
   ReadOptions o;
   o.fields = {"p", "v[1]"};
   const mesh::UnstructuredMesh m = readMesh(dir + "/two.vtu", o);
-  EXPECT_EQ(m.cellArrays, (std::vector<std::string>{"p@t0", "p@t1", "v"}));
+  EXPECT_EQ(m.cellArrays, (std::vector<std::string>{"p", "v"}));  // by field, steps once
   EXPECT_TRUE(m.cellFields.empty());
   ASSERT_EQ(m.findField("p")->numSteps(), 2u);
   EXPECT_FLOAT_EQ(valueAt(m, "p", {0, 0, 0}), 2.0f);  // on the shared face: both cells
@@ -182,8 +182,22 @@ TEST(VtuReader, CellDataNamedAsAFieldIsAveragedOntoThePoints) {
   EXPECT_FLOAT_EQ(valueAt(joined, "p", {0, 0, -1}), 3.0f);
   EXPECT_TRUE(asksForCellData(dir + "/p.pvtu", p));
   EXPECT_FALSE(asksForCellData(dir + "/p.pvtu", ReadOptions{}));
-  // Streaming reads point data only (the app reads cell data whole): said so, not "no such array".
-  EXPECT_NE(fileErrorOf([&] { listFieldSteps(dir + "/p.pvtu", p); }).find("'p' is cell data"),
+  // Listed as readMesh loads it, also when one step is loaded (which lists the pieces' steps).
+  const std::vector<FieldStepCount> listed = listFieldSteps(dir + "/p.pvtu", p);
+  ASSERT_EQ(listed.size(), 1u);
+  EXPECT_EQ(listed[0].name, "p");
+  ReadOptions oneStep = p;
+  oneStep.step = 0;
+  EXPECT_FLOAT_EQ(valueAt(readMesh(dir + "/p.pvtu", oneStep), "p", {0, 0, 0}), 2.0f);
+  // One step on its own is point data only: cell data needs the whole mesh. Said so.
+  EXPECT_NE(fileErrorOf([&] { readFieldStep(dir + "/p.pvtu", "p", 0); }).find("'p' is cell data"),
+            std::string::npos);
+  // Messages about cell data call it cell data.
+  ReadOptions wide;
+  wide.fields = {"v[5]"};
+  EXPECT_NE(fileErrorOf([&] {
+              readMesh(dir + "/two.vtu", wide);
+            }).find("field 'v[5]': cell array 'v' has 2 components"),
             std::string::npos);
 
   const std::string fixture = fixturePath("mesh_ascii.vtu");

@@ -18,7 +18,7 @@
 #include "app/bench/reference_images.h"
 #include "app/bench/registry.h"
 #include "app/bench/render_measure.h"
-#include "app/cli_parsers.h"
+#include "app/cli_checks.h"
 #include "app/rank_pipeline.h"
 #include "app/rank_share.h"
 #include "common/error.h"

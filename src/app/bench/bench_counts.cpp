@@ -206,7 +206,9 @@ void runCountBench(const CountArgs& a) {
 void configureCountBench(CLI::App& cmd) {
   auto a = std::make_shared<CountArgs>();
   cmd.add_option("--mesh", a->mesh, "Mesh to split (default: the demo capsule, generated once)");
-  cmd.add_option("--field", a->field, "Point field (step 0)")->capture_default_str();
+  cmd.add_option("--field", a->field, "Point field (step 0)")
+      ->capture_default_str()
+      ->check(nonEmptyName());
   cmd.add_option("--colormap", a->colormap, "Colour map")->capture_default_str();
   cmd.add_option("--ranks", a->ranks, "Virtual rank counts, comma separated")
       ->capture_default_str();

@@ -11,7 +11,7 @@
 #include "app/bench/bench_common.h"
 #include "app/bench/rank_group.h"
 #include "app/bench/registry.h"
-#include "app/cli_parsers.h"
+#include "app/cli_checks.h"
 #include "app/rank_pipeline.h"
 #include "common/error.h"
 #include "common/file_util.h"

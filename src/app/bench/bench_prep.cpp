@@ -9,7 +9,7 @@
 #include "app/bench/bench_common.h"
 #include "app/bench/prep_measure.h"
 #include "app/bench/registry.h"
-#include "app/cli_parsers.h"
+#include "app/cli_checks.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "prep/memory_report.h"
@@ -165,7 +165,8 @@ void configurePrepBench(CLI::App& cmd) {
   cmd.add_option("--elements", a->elements, "Generated capsule meshes to measure (e.g. 1M,5M)")
       ->capture_default_str();
   cmd.add_option("--mesh", a->meshes, "Measure these files instead of generated meshes");
-  cmd.add_option("--field", a->fields, "Point fields to load (default: all, as render does)");
+  cmd.add_option("--field", a->fields, "Point fields to load (default: all, as render does)")
+      ->check(nonEmptyName());
   cmd.add_option("--threads", a->threads, "Reader threads (preparation runs on one core)")
       ->capture_default_str();
   cmd.add_option("--runs", a->runs, "Runs per mesh (medians are reported)")->capture_default_str();

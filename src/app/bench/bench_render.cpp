@@ -420,7 +420,9 @@ void runRenderBench(RenderArgs& a) {
 void configureRenderBench(CLI::App& cmd) {
   auto a = std::make_shared<RenderArgs>();
   cmd.add_option("--mesh", a->mesh, "Mesh to render (default: the demo capsule, generated once)");
-  cmd.add_option("--field", a->field, "Point field (step 0)")->capture_default_str();
+  cmd.add_option("--field", a->field, "Point field (step 0)")
+      ->capture_default_str()
+      ->check(nonEmptyName());
   cmd.add_option("--colormap", a->colormap, "Colour map")->capture_default_str();
   cmd.add_option("--view", a->view, "Framing view: iso, +x, -x, ...")->capture_default_str();
   cmd.add_option("--fovy", a->fovy, "Vertical field of view, degrees")->capture_default_str();

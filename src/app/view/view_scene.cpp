@@ -59,12 +59,14 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   app::checkImageSize(job);
   const int firstStep = parseViewStep(job.time);
   Timer load;
-  // The viewer cycles through every point field; cell data is read only when named, as the one
-  // field shown (averaged onto the points).
+  // The viewer cycles through every point field as a file holds it (vectors as magnitudes). A
+  // component ("v[1]") or cell data is a field only when named: then it is the one field shown.
   app::ShareOptions share = job.share;
   io::ReadOptions named = share.read;
   named.fields = {job.field};
-  if (!job.field.empty() && io::asksForCellData(job.mesh, named)) share.read = named;
+  if (!job.field.empty() &&
+      (job.field.back() == ']' || app::fieldsAreCellData(job.mesh, named, coll)))
+    share.read = named;
   share_ = app::loadRankShare(job.mesh, share, coll);
   loadSeconds_ = load.seconds();
   choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
