@@ -55,19 +55,6 @@ std::string listNames(const std::vector<Group>& groups) {
   return s.empty() ? "none" : s;
 }
 
-// "NAME[k]" -> (NAME, k).
-std::optional<std::pair<std::string, int>> splitComponent(std::string_view request) {
-  size_t open = request.rfind('[');
-  if (open == std::string_view::npos || request.size() < open + 3 || request.back() != ']')
-    return std::nullopt;
-  int k = -1;
-  const char* b = request.data() + open + 1;
-  const char* e = request.data() + request.size() - 1;
-  auto [p, ec] = std::from_chars(b, e, k);
-  if (ec != std::errc() || p != e || k < 0) return std::nullopt;
-  return std::make_pair(std::string(request.substr(0, open)), k);
-}
-
 void addGroup(std::vector<FieldLoad>& loads, const std::string& source, const Group& g,
               int component, const std::string& field, std::optional<uint64_t> onlyStep,
               std::string_view kind) {
@@ -101,6 +88,19 @@ StepName splitStepName(std::string_view name) {
   if (ec != std::errc() || p != e || *b == '+' || *b == '-' || (*b == '0' && e - b > 1))
     return {std::string(name), {}};
   return {std::string(name.substr(0, at)), step};
+}
+
+// "NAME[k]" -> (NAME, k).
+std::optional<std::pair<std::string, int>> splitComponent(std::string_view request) {
+  size_t open = request.rfind('[');
+  if (open == std::string_view::npos || request.size() < open + 3 || request.back() != ']')
+    return std::nullopt;
+  int k = -1;
+  const char* b = request.data() + open + 1;
+  const char* e = request.data() + request.size() - 1;
+  auto [p, ec] = std::from_chars(b, e, k);
+  if (ec != std::errc() || p != e || k < 0) return std::nullopt;
+  return std::make_pair(std::string(request.substr(0, open)), k);
 }
 
 std::vector<FieldLoad> planFields(const std::string& source,

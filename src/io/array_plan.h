@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "io/mesh_io.h"
@@ -34,6 +35,9 @@ struct StepName {
 };
 // "p@t12" -> ("p", 12); any other name -> (name, none).
 StepName splitStepName(std::string_view name);
+
+// A field request "NAME[k]" -> (NAME, k); a request without a component -> none.
+std::optional<std::pair<std::string, int>> splitComponent(std::string_view request);
 
 // The loads that options ask for (every non-identifier array when options.fields is empty).
 // Throws sm::FileError(source, ...) for a requested name the file lacks (listing what it has), a

@@ -67,10 +67,8 @@ class LegacyReader {
     if (!options_.loadFields) return false;
     const std::string base = splitStepName(name).base;
     for (const std::string& r : options_.fields) {
-      const size_t open = r.rfind('[');
-      if (r == base ||
-          (!r.empty() && r.back() == ']' && open == base.size() && r.compare(0, open, base) == 0))
-        return true;
+      const auto component = splitComponent(r);
+      if (r == base || (component && component->first == base)) return true;
     }
     return false;
   }
