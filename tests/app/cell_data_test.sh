@@ -96,6 +96,17 @@ sys.exit(0 if worst <= 1e-6 else 1)
 PY
 check "cell data as the independently averaged point data" one.pfm oracle.pfm
 check "a component of cell data (2c over twice the range)" one.pfm component.pfm
+# The viewer shows cell data, and a component, as the one field it was given: its headless
+# screenshot is render's image.
+small=(--view iso --size 48x48)
+"$sm" render cells.pvtu --field c "${small[@]}" --range 0.9,2.5 --out render.png
+env -u DISPLAY -u WAYLAND_DISPLAY "$sm" view cells.pvtu --field c "${small[@]}" --range 0.9,2.5 \
+  --headless --frames 1 --screenshot view.png
+check "view of cell data as render's image" render.png view.png
+"$sm" render cells.pvtu --field 'v[1]' "${small[@]}" --range 1.8,5 --out render-v.png
+env -u DISPLAY -u WAYLAND_DISPLAY "$sm" view cells.pvtu --field 'v[1]' "${small[@]}" --range 1.8,5 \
+  --headless --frames 1 --screenshot view-v.png
+check "view of a component of cell data as render's image" render-v.png view-v.png
 # The image is not empty (a blank image would match the others too).
 python3 - <<'PY' || fails=$((fails + 1))
 import struct, sys
