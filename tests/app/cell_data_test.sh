@@ -39,9 +39,12 @@ def vtu(path, cells, point_values=None):
                 '<DataArray type="Float32" Name="v" NumberOfComponents="2" format="ascii">%s'
                 '</DataArray></CellData>') % (' '.join(num(v) for v in c),
                                               ' '.join(num(v) + ' ' + num(2 * v) for v in c))
-    else:
+    else:  # c, and a vector w = (c, 2c) whose component w[1] is a field only when named
         data = ('<PointData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
-                '</PointData>') % ' '.join(num(point_values[p]) for p in pts)
+                '<DataArray type="Float32" Name="w" NumberOfComponents="2" format="ascii">%s'
+                '</DataArray></PointData>') % (
+                    ' '.join(num(point_values[p]) for p in pts),
+                    ' '.join(num(point_values[p]) + ' ' + num(2 * f32(point_values[p])) for p in pts))
     with open(path, 'w') as out:
         out.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" '
                   'byte_order="LittleEndian"><UnstructuredGrid>'
@@ -96,6 +99,8 @@ sys.exit(0 if worst <= 1e-6 else 1)
 PY
 check "cell data as the independently averaged point data" one.pfm oracle.pfm
 check "a component of cell data (2c over twice the range)" one.pfm component.pfm
+"$sm" render points.vtu --field 'w[1]' --view iso --size 96x96 --range 1.8,5 --out point-component.pfm
+check "a component of point data, named by --field (2c over twice the range)" oracle.pfm point-component.pfm
 # The viewer shows cell data, and a component, as the one field it was given: its headless
 # screenshot is render's image.
 small=(--view iso --size 48x48)

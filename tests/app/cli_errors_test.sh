@@ -95,19 +95,15 @@ expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 -
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 # Cell data only (what finite-volume solvers write): read when --field names it (app.cell-data
-# checks the images), and named as cell data, not as a missing field, when no field is given.
+# renders it: this test runs no renders, as the sanitizer build runs it and the driver leaks), and
+# named as cell data, not as a missing field, when no field is given.
 sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="pressure"/;s/>0 1 2 3</>7</;}' -e 's/PointData/CellData/g' forged.vtu > cells.vtu
-"$sm" render cells.vtu --field pressure --size 8x8 --out cells.png >/dev/null 2>&1 || {
-  echo "FAIL: render --field naming cell data"; fails=$((fails + 1)); }
 expect "cells.vtu: has no point fields to render; its cell data (pressure) is read when --field names it" "$sm" render cells.vtu --out a.png
 if ! "$sm" info cells.vtu | grep -q "cell data  *pressure (--field NAME renders it"; then
   echo "FAIL: info does not list the cell data"; fails=$((fails + 1))
 fi
-# A component of a vector field is a field when named (FORMATS.md), in render as in info.
+# A component of a vector field is a field when named (FORMATS.md; app.cell-data renders one).
 sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="v" NumberOfComponents="2"/;s/>0 1 2 3</>0 1 2 3 4 5 6 7</;}' forged.vtu > vec.vtu
-if ! "$sm" render vec.vtu --field 'v[1]' --size 8x8 --out v.pfm >/dev/null 2>&1 || [ ! -s v.pfm ]; then
-  echo "FAIL: render --field 'v[1]' did not render the component"; fails=$((fails + 1))
-fi
 expect "vec.vtu: field 'v[2]': point array 'v' has 2 components" "$sm" render vec.vtu --field 'v[2]' --out a.png
 # Camera and option faults are named for the option at fault, before the step is derived from them.
 expect "--fovy: 0 degrees is not in (0, 180)" "$sm" render ok.pvtu --fovy 0 --out a.png

@@ -130,7 +130,7 @@ TEST(PvtuWriter, AFailedWriteLeavesTheOldDataSetWhole) {
   EXPECT_EQ(test::readBytes(dir + "/set/set_0.vtu"), oldPiece);
   EXPECT_EQ(test::readBytes(path), oldIndex);
   EXPECT_FALSE(std::filesystem::exists(dir + "/set/set_1.vtu"));
-  for (const std::string folder : {dir, dir + "/set"})
+  for (const std::string& folder : {dir, dir + "/set"})
     for (const auto& e : std::filesystem::directory_iterator(folder))
       EXPECT_EQ(e.path().string().find(".staged"), std::string::npos) << e.path();
   EXPECT_EQ(readMesh(path).numCells(), test::makeTestMesh(4, 1).numCells());
