@@ -59,8 +59,9 @@ void writeCountHeatmaps(comp::DeepCompositor& compositor, const std::string& pre
     writeHeat(concat(prefix, "_rank", r, ".png"),
               comp::heatmap(std::span<const uint32_t>(counts[r]), float(mx)), compositor.width(),
               compositor.height());
-  writeHeat(prefix + "_all.png", comp::heatmap(std::span<const uint32_t>(all), float(allMax)),
-            compositor.width(), compositor.height());
+  writeHeat(combinedHeatmapPath(prefix),
+            comp::heatmap(std::span<const uint32_t>(all), float(allMax)), compositor.width(),
+            compositor.height());
   log::info("wrote fragment-count heatmaps ", prefix, "_rank*.png and ", prefix, "_all.png (max ",
             allMax, " fragments per pixel)");
 }
@@ -77,6 +78,10 @@ void dumpCounts(comp::DeepCompositor& compositor, const std::string& path) {
 }
 
 }  // namespace
+
+std::string combinedHeatmapPath(const std::string& prefix) {
+  return prefix + "_all.png";
+}
 
 std::string framePath(const std::string& out, uint64_t step, bool sequence) {
   if (!sequence) return out;

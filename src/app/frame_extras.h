@@ -18,6 +18,9 @@ struct RenderJob;
 // Path for step `step` of a sequence ("out.png" -> "out_0003.png"); `path` itself for one frame.
 std::string framePath(const std::string& path, uint64_t step, bool sequence);
 
+// The combined fragment-count heatmap of --heatmaps PREFIX (the per-rank ones sit beside it).
+std::string combinedHeatmapPath(const std::string& prefix);
+
 void writeFrameExtras(const RenderJob& job, comp::DeepCompositor& compositor,
                       const std::vector<glm::vec4>& image, uint64_t step, bool sequence,
                       Collectives& coll);

@@ -138,7 +138,7 @@ std::vector<std::pair<const char*, std::string>> outputFiles(const RenderJob& jo
                                      {"--l2-heatmap", &job.l2Heatmap},
                                      {"--dump-counts", &job.dumpCounts}})
     if (!path->empty()) files.emplace_back(option, *path);
-  if (!job.heatmaps.empty()) files.emplace_back("--heatmaps", job.heatmaps + "_all.png");
+  if (!job.heatmaps.empty()) files.emplace_back("--heatmaps", combinedHeatmapPath(job.heatmaps));
   return files;
 }
 
