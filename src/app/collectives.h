@@ -24,6 +24,10 @@ class Collectives {
   virtual uint64_t sum(uint64_t v) = 0;
   // Rank 0's `bytes` at `data` to every rank (the viewer's per-frame state).
   virtual void broadcast(void* data, uint64_t bytes) = 0;
+  // Every rank sends toRank[d] to rank d (toRank has size() entries, of any lengths) and gets
+  // back, at [s], what rank s sent it (cell data's border sums).
+  virtual std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& toRank) = 0;
   // The compositor's communicator (nullptr on one rank: no exchange).
   virtual comp::Communicator* communicator() = 0;
 };
@@ -46,6 +50,10 @@ class SingleProcess final : public Collectives {
   double sum(double v) override { return v; }
   uint64_t sum(uint64_t v) override { return v; }
   void broadcast(void*, uint64_t) override {}
+  std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& toRank) override {
+    return toRank;
+  }
   comp::Communicator* communicator() override { return nullptr; }
 };
 

@@ -1,5 +1,7 @@
 #include "app/rank_share.h"
 
+#include "app/border_exchange.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -46,7 +48,10 @@ io::ReadOptions streamRead(const std::string& path, const ShareOptions& o, StepS
   return read;
 }
 
-RankShare readPieces(const std::string& path, const ShareOptions& o, Collectives& coll) {
+// cellData: the field asked for is cell data, averaged onto the points with the other ranks' help
+// (a point between two ranks' pieces takes the cells of both).
+RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellData,
+                     Collectives& coll) {
   std::vector<uint64_t> sizes = io::pieceCellCounts(path);
   std::vector<int> toRank = partition::assignClustersToRanks(sizes, coll.size());
   RankShare s;
@@ -61,11 +66,13 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, Collectives
       mine.read.pieces = s.clusters;
       read = streamRead(path, mine, *s.stream);
     }
+    read.cellDataOnPoints = !cellData;
     s.mesh = io::readMesh(path, read);
     if (s.stream) s.stream->filePoints = std::move(s.mesh.pointOrigin);
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
+  if (cellData) cellDataToPointsOverRanks(s.mesh, coll);
   return s;
 }
 
@@ -111,13 +118,13 @@ bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Col
 }
 
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
-  // Cell data is averaged onto the points of the whole mesh (a point between two ranks' pieces
-  // needs the cells of both), so every rank reads it whole, with every step, and takes its share.
+  // Cell data is averaged onto the points with every step in memory (no streaming): each step's
+  // means need the other ranks' sums at the points they share.
   const bool cellData = fieldsAreCellData(path, o.read, coll);
   ShareOptions reading = o;
   reading.streamSteps = o.streamSteps && !cellData;
-  const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0 && !cellData;
-  RankShare s = pieces ? readPieces(path, reading, coll) : readWhole(path, reading, coll);
+  const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0;
+  RankShare s = pieces ? readPieces(path, reading, cellData, coll) : readWhole(path, reading, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);
   render::ElementSizeSum local = render::elementSizeSum(s.mesh);
   s.elementSize.sum = coll.sum(local.sum);

@@ -43,9 +43,9 @@ struct RankShare {
 bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Collectives& coll);
 
 // Reads what this rank needs. A .pvtu is split by pieces: each rank reads only its own pieces
-// (assigned to balance element counts, from the pieces' headers). Other formats, and any mesh
-// whose requested field is cell data (averaged over the whole mesh), are read whole on every rank
-// and split by cluster id.
+// (assigned to balance element counts, from the pieces' headers); cell data asked for as the field
+// is then averaged onto the points with the sums of the other ranks at the points they share
+// (cellDataToPointsOverRanks). Other formats are read whole on every rank and split by cluster id.
 RankShare loadRankShare(const std::string& path, const ShareOptions& options, Collectives& coll);
 
 }  // namespace sm::app

@@ -30,7 +30,7 @@ void checkNoPieces(const std::string& name, const ReadOptions& options) {
 
 // Cell data asked for as fields becomes point data once the whole mesh is read (every piece of a
 // .pvtu joined), so that points between pieces average the cells of both.
-mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m) {
+mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool average = true) {
   for (const mesh::CellField& f : m.cellFields) {
     log::info(m.source, ": field '", f.name,
               "' is cell data: each point takes the mean of the cells around it");
@@ -42,7 +42,7 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m) {
       log::warning(m.source, ": cell data '", f.name, "' has ", nonFinite,
                    " non-finite values; the points of those cells render transparent");
   }
-  mesh::cellFieldsToPoints(m);
+  if (average) mesh::cellFieldsToPoints(m);
   return m;
 }
 
@@ -65,7 +65,7 @@ mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& o
 }  // namespace
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
-  return withCellDataOnPoints(readAnyMesh(path, options));
+  return withCellDataOnPoints(readAnyMesh(path, options), options.cellDataOnPoints);
 }
 
 mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
@@ -74,11 +74,13 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
   if (format != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
   switch (format) {
     case Format::Vtu:
-      return withCellDataOnPoints(readVtu(FileBytes::copyOf(bytes), name, options));
+      return withCellDataOnPoints(readVtu(FileBytes::copyOf(bytes), name, options),
+                                  options.cellDataOnPoints);
     case Format::Pvtu:
       throw Error(name, ": a .pvtu names its pieces by file; read it with readMesh");
     case Format::LegacyVtk:
-      return withCellDataOnPoints(readLegacyVtk(FileBytes::copyOf(bytes), name, options));
+      return withCellDataOnPoints(readLegacyVtk(FileBytes::copyOf(bytes), name, options),
+                                  options.cellDataOnPoints);
     case Format::Ugrid:
       return readUgrid(FileBytes::copyOf(bytes), name, options, false);
   }

@@ -37,6 +37,10 @@ struct ReadOptions {
   // its last), so that memory does not grow with the number of steps; later steps are read with
   // readFieldStep. Unset: every step.
   std::optional<uint64_t> step;
+  // Cell data named in `fields` is averaged onto the points of the mesh read (the mesh returned has
+  // no cellFields). False: it is left in mesh.cellFields, for a caller that has read only some of
+  // a .pvtu's pieces to average with the help of the ranks holding the others.
+  bool cellDataOnPoints = true;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});

@@ -154,25 +154,39 @@ std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std:
   return concat("; '", base, "' is cell data, read only when --field names it");
 }
 
-void cellFieldsToPoints(UnstructuredMesh& m) {
-  std::vector<uint32_t> uses(m.numPoints(), 0);
+std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m) {
+  std::vector<double> uses(m.numPoints(), 0.0);
   for (int t = 0; t < kNumCellTypes; ++t)
-    for (uint32_t v : m.cells[t]) ++uses[v];
+    for (uint32_t v : m.cells[t]) uses[v] += 1.0;
+  return uses;
+}
+
+std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step) {
+  std::vector<double> sum(m.numPoints(), 0.0);
+  const auto& perType = f.steps[step];
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    const uint32_t nv = numVerts(kAllCellTypes[t]);
+    SM_CHECK_EQ(perType[t].size() * nv, m.cells[t].size());
+    for (size_t i = 0; i < perType[t].size(); ++i)
+      for (uint32_t k = 0; k < nv; ++k) sum[m.cells[t][i * nv + k]] += perType[t][i];
+  }
+  return sum;
+}
+
+std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses) {
+  SM_CHECK_EQ(sums.size(), uses.size());
+  std::vector<float> values(sums.size());
+  for (size_t p = 0; p < values.size(); ++p)
+    values[p] = uses[p] > 0 ? float(sums[p] / uses[p]) : std::numeric_limits<float>::quiet_NaN();
+  return values;
+}
+
+void cellFieldsToPoints(UnstructuredMesh& m) {
+  const std::vector<double> uses = cellUsesAtPoints(m);
   for (CellField& cf : m.cellFields) {
     Field f{cf.name, {}};
-    for (const auto& perType : cf.steps) {
-      std::vector<double> sum(m.numPoints(), 0.0);
-      for (int t = 0; t < kNumCellTypes; ++t) {
-        const uint32_t nv = numVerts(kAllCellTypes[t]);
-        SM_CHECK_EQ(perType[t].size() * nv, m.cells[t].size());
-        for (size_t i = 0; i < perType[t].size(); ++i)
-          for (uint32_t k = 0; k < nv; ++k) sum[m.cells[t][i * nv + k]] += perType[t][i];
-      }
-      std::vector<float> values(m.numPoints());
-      for (size_t p = 0; p < values.size(); ++p)
-        values[p] = uses[p] ? float(sum[p] / uses[p]) : std::numeric_limits<float>::quiet_NaN();
-      f.steps.push_back(std::move(values));
-    }
+    for (size_t s = 0; s < cf.steps.size(); ++s)
+      f.steps.push_back(meansAtPoints(cellSumsAtPoints(m, cf, s), uses));
     m.fields.push_back(std::move(f));
   }
   m.cellFields.clear();

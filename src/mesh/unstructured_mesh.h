@@ -95,9 +95,15 @@ std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std:
 
 // Turns every cell field into a point field of the same name: a point's value is the mean of the
 // values of the elements that use it (VTK's Cell Data to Point Data), NaN where none does. On a
-// partitioned mesh this must run on the whole mesh, or points on the border of two parts would
-// take a different value in each.
+// partitioned mesh this must see every part, or points on the border of two parts would take a
+// different value in each: run it on the whole mesh, or build the means from the pieces below with
+// the sums of the other parts added (app::cellDataToPointsOverRanks).
 void cellFieldsToPoints(UnstructuredMesh& m);
+// The pieces of cellFieldsToPoints. Per point: the number of elements that use it, and the sum of
+// their values in step `step` of `f`; the mean is sums / uses (NaN where uses is 0).
+std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m);
+std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step);
+std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses);
 
 // Appends `b` to `a` (vertex ids of b shifted); fields must match by name and step count.
 void append(UnstructuredMesh& a, const UnstructuredMesh& b);
