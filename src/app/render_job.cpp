@@ -47,9 +47,11 @@ std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
   return {uint64_t(t)};
 }
 
-// Range of `field` over the steps to render, over all ranks, reading one step at a time;
-// [0, 1] when no rank has a finite value.
-std::pair<double, double> sequenceRange(const StepSource& source, const std::string& field,
+// Range of `field` over the steps to render, over all ranks, reading one step at a time. No
+// finite value anywhere is an error: every sample would be transparent, so the image would be
+// empty, whatever the range.
+std::pair<double, double> sequenceRange(const std::string& path, const StepSource& source,
+                                        const std::string& field,
                                         const std::vector<uint64_t>& steps, Collectives& coll) {
   std::vector<uint64_t> distinct = steps;
   std::sort(distinct.begin(), distinct.end());
@@ -57,7 +59,11 @@ std::pair<double, double> sequenceRange(const StepSource& source, const std::str
   mesh::Range r;
   for (uint64_t s : distinct) r.extend(source.range(field, s));
   double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
-  if (!(lo <= hi)) return {0.0, 1.0};
+  if (!(lo <= hi))
+    throw Error(path, ": field '", field, "' has no finite value in ",
+                distinct.size() == 1 ? concat("step ", distinct[0])
+                                     : concat("the ", distinct.size(), " steps rendered"),
+                " (NaN and infinity render transparent: the image would be empty)");
   return {lo, hi};
 }
 
@@ -201,7 +207,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
       job,
       agreedStepCount(job.mesh, field, source.numSteps(field), share.mesh.numPoints() > 0, coll));
   const std::pair<double, double> range =
-      job.range ? *job.range : sequenceRange(source, field, steps, coll);
+      job.range ? *job.range : sequenceRange(job.mesh, source, field, steps, coll);
   const double loadSeconds = total.seconds();  // with the range pass over the steps
   render::RenderSettings s = makeSettings(job, share, range);
   s.compositeMethod = job.composite;

@@ -64,6 +64,12 @@ cat > forged.vtu <<'VTU'
 </Piece></UnstructuredGrid></VTKFile>
 VTU
 expect 'f\x0ashellmarch: error: forged\x1b[31m' "$sm" render forged.vtu --field nosuch --out a.png
+# A field with no finite value renders nothing: an error, not an empty image.
+sed -e 's/Name="f&#10;shellmarch: error: forged&#27;\[31m"/Name="f"/' -e '/PointData/s/>0 1 2 3</>nan inf -inf nan</' \
+  forged.vtu > nan.vtu
+rm -f nan.png
+expect "nan.vtu: field 'f' has no finite value in step 0" "$sm" render nan.vtu --field f --out nan.png
+[ ! -e nan.png ] || { echo "FAIL: nan.png written"; fails=$((fails + 1)); }
 expect "--early-termination" "$sm" render ok.pvtu --early-termination 2 --out a.png
 expect "--early-termination" "$sm" render ok.pvtu --early-termination 0 --out a.png
 expect "--background" "$sm" render ok.pvtu --background 2,-1,0 --out a.png
