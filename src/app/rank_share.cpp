@@ -120,7 +120,7 @@ bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Col
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
   // Cell data is averaged onto the points with every step in memory (no streaming): each step's
   // means need the other ranks' sums at the points they share.
-  const bool cellData = fieldsAreCellData(path, o.read, coll);
+  const bool cellData = o.cellData ? *o.cellData : fieldsAreCellData(path, o.read, coll);
   ShareOptions reading = o;
   reading.streamSteps = o.streamSteps && !cellData;
   const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0;

@@ -19,6 +19,9 @@ struct ShareOptions {
   // Keep one time step in memory and read the others from the file when they are needed (.vtu and
   // .pvtu; other formats are loaded whole, every step in memory).
   bool streamSteps = false;
+  // Whether read.fields names cell data, when the caller has asked fieldsAreCellData already
+  // (unset: loadRankShare asks, one header read and one collective).
+  std::optional<bool> cellData;
 };
 
 // How a streamed share reads its other steps: io::readFieldStep(path, field, step, read,

@@ -64,9 +64,10 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   app::ShareOptions share = job.share;
   io::ReadOptions named = share.read;
   named.fields = {job.field};
-  if (!job.field.empty() &&
-      (job.field.back() == ']' || app::fieldsAreCellData(job.mesh, named, coll)))
-    share.read = named;
+  if (!job.field.empty()) {
+    share.cellData = app::fieldsAreCellData(job.mesh, named, coll);
+    if (job.field.back() == ']' || *share.cellData) share.read = named;
+  }
   share_ = app::loadRankShare(job.mesh, share, coll);
   loadSeconds_ = load.seconds();
   choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
