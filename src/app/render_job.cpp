@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/file_util.h"
+#include "common/memory.h"
 #include "common/timer.h"
 #include "io/mesh_io.h"
 #include "render/renderer.h"
@@ -209,6 +210,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
   const std::pair<double, double> range =
       job.range ? *job.range : sequenceRange(job.mesh, source, field, steps, coll);
   const double loadSeconds = total.seconds();  // with the range pass over the steps
+  const uint64_t peakAfterLoad = peakResidentBytes();
   render::RenderSettings s = makeSettings(job, share, range);
   s.compositeMethod = job.composite;
 
@@ -232,6 +234,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
     StatsReport report(job, coll);
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
                     ctx.deviceName(), s);
+    report.setHostMemory(peakAfterLoad);
     renderFrames(
         {job, steps, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
     report.finish(ctx.validationErrors());

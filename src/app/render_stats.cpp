@@ -1,5 +1,7 @@
 #include "app/render_stats.h"
 
+#include "common/memory.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -8,6 +10,7 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"
+#include "common/memory.h"
 #include "prep/memory_report.h"
 
 namespace sm::app {
@@ -57,6 +60,16 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["shell_triangles_per_rank"] = spread(double(rank.numShellTriangles()));
   json_["device_bytes_max_rank"] = coll_.max(double(gpu.deviceBytes()));
   json_["memory_rank0"] = mem;
+}
+
+void StatsReport::setHostMemory(uint64_t peakAfterLoad) {
+  const double now = double(peakResidentBytes());
+  auto spread = [&](double v) {
+    return nlohmann::json{
+        {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
+  };
+  json_["host_peak_bytes_after_load_per_rank"] = spread(double(peakAfterLoad));
+  json_["host_peak_bytes_after_setup_per_rank"] = spread(now);
 }
 
 bool StatsReport::wanted() const {
@@ -126,6 +139,15 @@ void StatsReport::printSetup() const {
               j["prepare_from_cache"].get<bool>() ? " (from cache)" : "",
               (unsigned long long)j["elements"].get<uint64_t>(),
               (unsigned long long)j["shell_triangles"].get<uint64_t>());
+  if (j.contains("host_peak_bytes_after_load_per_rank")) {
+    const double mib = 1024.0 * 1024.0;
+    std::printf(
+        "  memory, largest rank: host peak %.1f MiB after loading, %.1f MiB after setup (with the "
+        "driver's); device %.1f MiB\n",
+        j["host_peak_bytes_after_load_per_rank"]["max"].get<double>() / mib,
+        j["host_peak_bytes_after_setup_per_rank"]["max"].get<double>() / mib,
+        j["device_bytes_max_rank"].get<double>() / mib);
+  }
   if (coll_.size() > 1) {
     const auto &e = j["elements_per_rank"], &sh = j["shell_triangles_per_rank"];
     std::printf(

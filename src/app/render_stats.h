@@ -31,6 +31,9 @@ class StatsReport {
   void setSetup(double loadSeconds, double prepSeconds, bool fromCache,
                 const prep::PreparedRank& rank, const render::GpuScene& gpu,
                 const std::string& device, const render::RenderSettings& s);
+  // Collective. Host memory per rank: the peak resident size once the mesh was loaded (before
+  // preparation and the device) and now (after setup: the driver's own memory included).
+  void setHostMemory(uint64_t peakAfterLoad);
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
   void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer,
                 comp::DeepCompositor& compositor);

@@ -46,6 +46,9 @@ for n in 1 3; do
   json $s "'scalar_wait_ms_mean' in j['sequence'] and 'prefetch_hidden' in j['sequence']"
   json $s "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1}"
   json $s "j['sequence']['scalar_uploads'] == {'min': 4, 'max': 4}"
+  # Host memory per rank: known on Linux, the peak after setup at least the peak after loading.
+  json $s "0 < j['host_peak_bytes_after_load_per_rank']['min'] <= j['host_peak_bytes_after_setup_per_rank']['min']"
+  grep -q "memory, largest rank: host peak .* MiB after loading" seq$n.log || fail "no memory line in seq$n.log"
 done
 # Every fragment is composited by exactly one rank, whichever owns its pixel.
 json seq3.json "j['pixel_ownership'] == 'interleaved'"
