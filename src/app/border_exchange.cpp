@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <limits>
+#include <tuple>
 
 #include "common/check.h"
 #include "common/error.h"
@@ -14,9 +15,11 @@
 namespace sm::app {
 namespace {
 
-using Key = std::array<uint64_t, 3>;  // a point's coordinates, bit for bit
+// A point's coordinates, bit for bit, and which copy of that position it is on its rank.
+using Key = std::array<uint64_t, 4>;
+using Position = std::array<uint64_t, 3>;
 
-Key keyOf(const glm::dvec3& p) {
+Position positionOf(const glm::dvec3& p) {
   return {std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y), std::bit_cast<uint64_t>(p.z)};
 }
 
@@ -43,92 +46,122 @@ std::vector<uint32_t> boundaryPoints(const mesh::UnstructuredMesh& m) {
   return points;
 }
 
-// {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}, or nothing for no points.
-std::vector<double> boxOf(const mesh::UnstructuredMesh& m, const std::vector<uint32_t>& points) {
-  if (points.empty()) return {};
-  mesh::Bounds b;
-  for (uint32_t p : points) b.extend(m.points[p]);
-  return {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z};
-}
-
-bool inBox(const glm::dvec3& p, const std::vector<double>& box) {
-  return box.size() == 6 && p.x >= box[0] && p.y >= box[1] && p.z >= box[2] && p.x <= box[3] &&
-         p.y <= box[4] && p.z <= box[5];
-}
-
-// For each point in `coords` (x, y, z after one another), the first of `points` at bitwise the
-// same place, or -1.
-std::vector<int64_t> matchPoints(const mesh::UnstructuredMesh& m,
-                                 const std::vector<uint32_t>& points,
-                                 const std::vector<double>& coords) {
-  std::vector<std::pair<Key, uint32_t>> sorted;
-  sorted.reserve(points.size());
-  for (uint32_t p : points) sorted.push_back({keyOf(m.points[p]), p});
-  std::sort(sorted.begin(), sorted.end());  // equal keys: the lowest point id first
-  std::vector<int64_t> match(coords.size() / 3, -1);
-  for (size_t i = 0; i < match.size(); ++i) {
-    const Key k = keyOf({coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]});
-    auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<Key, uint32_t>{k, 0});
-    if (it != sorted.end() && it->first == k) match[i] = it->second;
+// For each of `border`, how many of the rank's points (any, used or not) at bitwise the same
+// position have a lower id: the weld joins a piece's k-th copy of a position with the k-th copy
+// of every other piece, and a rank's own weld numbers its copies in that order.
+std::vector<uint64_t> occurrences(const mesh::UnstructuredMesh& m,
+                                  const std::vector<uint32_t>& border) {
+  std::vector<Position> positions;
+  positions.reserve(border.size());
+  for (uint32_t p : border) positions.push_back(positionOf(m.points[p]));
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+  std::vector<uint64_t> seen(positions.size(), 0), occ;
+  occ.reserve(border.size());
+  size_t next = 0;  // border is in increasing order
+  for (uint32_t p = 0; p < m.numPoints() && next < border.size(); ++p) {
+    const Position key = positionOf(m.points[p]);
+    auto it = std::lower_bound(positions.begin(), positions.end(), key);
+    if (it == positions.end() || *it != key) continue;
+    const uint64_t k = seen[size_t(it - positions.begin())]++;
+    if (border[next] == p) {
+      occ.push_back(k);
+      ++next;
+    }
   }
-  return match;
+  SM_CHECK_EQ(occ.size(), border.size());
+  return occ;
+}
+
+int meetingRank(const Key& k, int ranks) {
+  return int(hashBytes(k.data(), sizeof k) % uint64_t(ranks));
 }
 
 }  // namespace
 
-BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, Collectives& coll) {
-  const int n = coll.size(), me = coll.rank();
+BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, Collectives& coll)
+    : numPoints_(m.numPoints()) {
+  const int n = coll.size();
   const std::vector<uint32_t> border = boundaryPoints(m);
-  const std::vector<std::vector<double>> boxes =
-      coll.exchange(std::vector<std::vector<double>>(n, boxOf(m, border)));
-  send_.resize(n);
-  std::vector<std::vector<double>> coords(n);
-  for (int d = 0; d < n; ++d) {
-    if (d == me) continue;
-    for (uint32_t p : border)
-      if (inBox(m.points[p], boxes[d])) {
-        send_[d].push_back(p);
-        coords[d].insert(coords[d].end(), {m.points[p].x, m.points[p].y, m.points[p].z});
-      }
+  const std::vector<uint64_t> occ = occurrences(m, border);
+  // Offers: (x, y, z, copy) per boundary point, to the point's meeting rank.
+  std::vector<std::vector<double>> offers(n);
+  std::vector<std::vector<uint32_t>> offered(n);
+  for (size_t i = 0; i < border.size(); ++i) {
+    const glm::dvec3& p = m.points[border[i]];
+    const Position pos = positionOf(p);
+    const int to = meetingRank({pos[0], pos[1], pos[2], occ[i]}, n);
+    offers[to].insert(offers[to].end(), {p.x, p.y, p.z, double(occ[i])});
+    offered[to].push_back(border[i]);
   }
-  const std::vector<std::vector<double>> offered = coll.exchange(coords);
-  match_.resize(n);
-  std::vector<uint8_t> matched(m.numPoints(), 0);
-  for (int s = 0; s < n; ++s) {
-    match_[s] = matchPoints(m, border, offered[s]);
-    for (int64_t p : match_[s])
-      if (p >= 0) matched[p] = 1;
+  const std::vector<std::vector<double>> got = coll.exchange(offers);
+  // As meeting rank: a name offered by two or more ranks is a shared point, one group.
+  std::vector<std::tuple<Key, int, uint32_t>> entries;
+  for (int s = 0; s < n; ++s)
+    for (uint32_t i = 0; i * 4 < got[s].size(); ++i) {
+      const double* e = got[s].data() + 4 * i;
+      const Position pos = positionOf({e[0], e[1], e[2]});
+      entries.push_back({{pos[0], pos[1], pos[2], uint64_t(e[3])}, s, i});
+    }
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::vector<int64_t>> group(n);
+  for (int s = 0; s < n; ++s) group[s].assign(got[s].size() / 4, -1);
+  for (size_t a = 0, b; a < entries.size(); a = b) {
+    for (b = a + 1; b < entries.size() && std::get<0>(entries[b]) == std::get<0>(entries[a]);) ++b;
+    if (b - a < 2) continue;  // on one rank only: the outside of the data, or a local seam
+    for (size_t e = a; e < b; ++e)
+      group[std::get<1>(entries[e])][std::get<2>(entries[e])] = groups_;
+    ++groups_;
   }
-  shared_ = uint64_t(std::count(matched.begin(), matched.end(), uint8_t(1)));
-  log::debug(m.source, ": ", border.size(), " points on this rank's boundary, ", shared_,
+  std::vector<std::vector<double>> shared(n);
+  groupOf_.resize(n);
+  for (int s = 0; s < n; ++s)
+    for (int64_t g : group[s]) {
+      shared[s].push_back(g >= 0 ? 1.0 : 0.0);
+      if (g >= 0) groupOf_[s].push_back(uint32_t(g));
+    }
+  const std::vector<std::vector<double>> answers = coll.exchange(shared);
+  mine_.resize(n);
+  for (int to = 0; to < n; ++to) {
+    SM_CHECK_EQ(answers[to].size(), offered[to].size());
+    for (size_t i = 0; i < offered[to].size(); ++i)
+      if (answers[to][i] != 0.0) mine_[to].push_back(offered[to][i]);
+    sharedPoints_ += mine_[to].size();
+  }
+  log::debug(m.source, ": ", border.size(), " points on this rank's boundary, ", sharedPoints_,
              " shared with other ranks");
 }
 
 void BorderExchange::addOtherRanks(std::vector<double>& perPoint, Collectives& coll) const {
+  SM_CHECK_EQ(perPoint.size(), numPoints_);
   const int n = coll.size();
   std::vector<std::vector<double>> values(n);
-  for (int d = 0; d < n; ++d) {
-    values[d].reserve(send_[d].size());
-    for (uint32_t p : send_[d]) values[d].push_back(perPoint[p]);
-  }
+  for (int to = 0; to < n; ++to)
+    for (uint32_t p : mine_[to]) values[to].push_back(perPoint[p]);
   const std::vector<std::vector<double>> received = coll.exchange(values);
-  for (int s = 0; s < n; ++s) {
-    // A rank that sent a different count than it offered broke the protocol: an invariant.
-    SM_CHECK_EQ(received[s].size(), match_[s].size());
-    for (size_t i = 0; i < received[s].size(); ++i)
-      if (match_[s][i] >= 0) perPoint[match_[s][i]] += received[s][i];
+  std::vector<double> totals(groups_, 0.0);
+  for (int s = 0; s < n; ++s) {  // in rank order: every copy gets the same sum
+    SM_CHECK_EQ(received[s].size(), groupOf_[s].size());
+    for (size_t i = 0; i < received[s].size(); ++i) totals[groupOf_[s][i]] += received[s][i];
+  }
+  std::vector<std::vector<double>> sums(n);
+  for (int s = 0; s < n; ++s)
+    for (uint32_t g : groupOf_[s]) sums[s].push_back(totals[g]);
+  const std::vector<std::vector<double>> back = coll.exchange(sums);
+  for (int from = 0; from < n; ++from) {
+    SM_CHECK_EQ(back[from].size(), mine_[from].size());
+    for (size_t i = 0; i < back[from].size(); ++i) perPoint[mine_[from][i]] = back[from][i];
   }
 }
 
 namespace {
 
-// What every rank must agree on: the cell fields' names and step counts, as a 52-bit number
-// (exact in a double, so that ranks can compare it through min and max).
-double cellFieldSignature(const mesh::UnstructuredMesh& m) {
+std::string describeCellFields(const mesh::UnstructuredMesh& m) {
   std::string text;
   for (const mesh::CellField& f : m.cellFields)
-    text += f.name + '\n' + std::to_string(f.steps.size()) + '\n';
-  return double(hashBytes(text.data(), text.size()) & ((uint64_t(1) << 52) - 1));
+    text += concat(text.empty() ? "" : ", ", "'", f.name, "' with ", f.steps.size(),
+                   f.steps.size() == 1 ? " step" : " steps");
+  return text.empty() ? "no cell data asked for" : text;
 }
 
 uint64_t cellFieldSteps(const mesh::UnstructuredMesh& m) {
@@ -137,24 +170,67 @@ uint64_t cellFieldSteps(const mesh::UnstructuredMesh& m) {
   return steps;
 }
 
-}  // namespace
+std::vector<double> asDoubles(const std::string& s) {
+  return std::vector<double>(s.begin(), s.end());
+}
 
-void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, Collectives& coll) {
-  // A rank that read no pieces has no cell fields and no say; it takes part in every round.
-  const bool holds = !m.cellFields.empty();
-  const double signature = cellFieldSignature(m);
+std::string asText(const std::vector<double>& v) {
+  std::string s;
+  for (double c : v) s += char(c);
+  return s;
+}
+
+// Every rank holding pieces must hold the same cell fields, or the rounds of the exchange would
+// not pair up. On a mismatch, rank 0 learns what each rank holds and every rank throws its words.
+void checkSameCellFields(const mesh::UnstructuredMesh& m, bool holds, const std::string& pieces,
+                         Collectives& coll) {
+  const std::string fields = describeCellFields(m);
+  // 52 bits of the description's hash: exact in a double, so that ranks compare it by min and max.
+  const double signature =
+      double(hashBytes(fields.data(), fields.size()) & ((uint64_t(1) << 52) - 1));
   const double lo = coll.min(holds ? signature : std::numeric_limits<double>::infinity());
   const double hi = coll.max(holds ? signature : -1.0);
-  if (hi >= 0 && lo != hi)
-    throw Error(m.source, ": the pieces on different ranks do not have the same cell data (",
-                "names or time steps); every piece must hold the cell data asked for");
+  if (hi < 0 || lo == hi) return;
+  const std::string mine =
+      holds ? concat("rank ", coll.rank(), " (", pieces, ") has ", fields) : std::string();
+  std::vector<std::vector<double>> toRank(coll.size());
+  toRank[0] = asDoubles(mine);
+  const std::vector<std::vector<double>> all = coll.exchange(toRank);
+  std::string message;
+  if (coll.rank() == 0) {
+    std::string first, other;
+    for (const auto& d : all) {
+      const std::string text = asText(d);
+      if (text.empty()) continue;
+      const std::string what = text.substr(text.find(") has ") + 6);
+      if (first.empty())
+        first = text;
+      else if (other.empty() && what != first.substr(first.find(") has ") + 6))
+        other = text;
+    }
+    message = concat(m.source, ": the pieces do not hold the same cell data: ", first, "; ", other);
+  }
+  throw Error(broadcastString(coll, message));
+}
+
+}  // namespace
+
+void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, bool holdsPieces,
+                               const std::string& pieces, Collectives& coll) {
+  if (coll.size() == 1) {  // nothing to exchange: the rank's pieces are the whole mesh
+    mesh::cellFieldsToPoints(m);
+    return;
+  }
+  checkSameCellFields(m, holdsPieces, pieces, coll);
   const uint64_t rounds = uint64_t(coll.max(double(cellFieldSteps(m))));
   BorderExchange border(m, coll);
   std::vector<double> uses = mesh::cellUsesAtPoints(m);
   border.addOtherRanks(uses, coll);
-  if (!holds) {
-    std::vector<double> none;
-    for (uint64_t r = 0; r < rounds; ++r) border.addOtherRanks(none, coll);
+  if (m.cellFields.empty()) {  // a rank without pieces takes part in every round
+    for (uint64_t r = 0; r < rounds; ++r) {
+      std::vector<double> none(m.numPoints(), 0.0);
+      border.addOtherRanks(none, coll);
+    }
     return;
   }
   for (const mesh::CellField& cf : m.cellFields) {

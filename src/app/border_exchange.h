@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "app/collectives.h"
@@ -13,31 +14,38 @@ namespace sm::app {
 
 class BorderExchange {
  public:
-  // Collective. Only points on the boundary of this rank's elements (faces no other local element
-  // shares) can be used by another rank's elements in a conforming mesh; those are offered to the
-  // ranks whose boundary's bounding box holds them, and matched there by bitwise-equal coordinates,
-  // as the weld matches the points of a .pvtu's pieces. Throws sm::Error naming the mesh for faces
-  // shared by more than two elements (as preparation would).
+  // Collective. In a conforming mesh only points on the boundary of a rank's elements (faces no
+  // other element of that rank has) can be used by another rank's elements. Each is named by its
+  // coordinates, bit for bit, and its occurrence among this rank's points at those coordinates
+  // (the k-th copy of a point in the pieces joins the k-th copy elsewhere, as the weld joins a
+  // .pvtu's pieces: io::weldPieces), and sent to a meeting rank chosen by a hash of that name;
+  // the meeting rank tells each sender which of its points another rank has too. Traffic is
+  // proportional to the boundary, whatever the shape of the parts. Throws sm::Error naming the
+  // mesh for faces shared by more than two elements (as preparation would).
   BorderExchange(const mesh::UnstructuredMesh& m, Collectives& coll);
 
-  // Collective. Adds to each of this rank's points the values (one per point, in each rank's own
-  // point order) of the coincident points of the other ranks. Every rank calls it the same number
-  // of times.
+  // Collective. Replaces each shared point's value (one per point of this rank) by the sum of the
+  // values of every rank's copy of the point, added in rank order at its meeting rank, so that
+  // every copy gets the same value, bit for bit. Every rank calls it the same number of times.
   void addOtherRanks(std::vector<double>& perPoint, Collectives& coll) const;
 
-  uint64_t sharedPoints() const { return shared_; }  // of this rank: matched on another rank
+  uint64_t sharedPoints() const { return sharedPoints_; }  // of this rank: on another rank too
 
  private:
-  std::vector<std::vector<uint32_t>> send_;  // [rank]: this rank's points offered to it, in order
-  std::vector<std::vector<int64_t>> match_;  // [rank]: where each point it offers adds, or -1
-  uint64_t shared_ = 0;
+  uint64_t numPoints_ = 0;
+  std::vector<std::vector<uint32_t>> mine_;     // [meeting rank]: this rank's shared points
+  std::vector<std::vector<uint32_t>> groupOf_;  // as meeting rank, [sender][i]: the point's group
+  uint64_t groups_ = 0;
+  uint64_t sharedPoints_ = 0;
 };
 
 // Averages the cell fields of a rank's share (read with io::ReadOptions::cellDataOnPoints false)
-// onto its points, the cells of every rank counted: the result equals what the whole mesh's
-// mesh::cellFieldsToPoints gives those points, up to the order of summation. Collective; ranks
-// holding no elements take part with an empty mesh. Throws sm::Error when ranks disagree about
-// the cell fields' names or step counts.
-void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, Collectives& coll);
+// onto its points, the cells of every rank counted: for conforming pieces that do not overlap, the
+// result equals what mesh::cellFieldsToPoints gives the welded whole, up to the order of
+// summation. Collective; `holdsPieces` false for a rank that read no pieces (it takes part with an
+// empty mesh); `pieces` names this rank's pieces in messages. Throws sm::Error on every rank when
+// ranks holding pieces disagree about the cell fields' names or step counts.
+void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, bool holdsPieces,
+                               const std::string& pieces, Collectives& coll);
 
 }  // namespace sm::app

@@ -48,6 +48,15 @@ io::ReadOptions streamRead(const std::string& path, const ShareOptions& o, StepS
   return read;
 }
 
+// The files of a rank's pieces, for messages.
+std::string pieceNames(const std::string& path, const RankShare& s) {
+  if (s.clusters.empty()) return {};
+  const std::vector<std::string> files = io::meshFiles(path);  // the index, then the pieces
+  std::string names;
+  for (int c : s.clusters) names += (names.empty() ? "" : ", ") + files.at(size_t(c) + 1);
+  return names;
+}
+
 // cellData: the field asked for is cell data, averaged onto the points with the other ranks' help
 // (a point between two ranks' pieces takes the cells of both).
 RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellData,
@@ -72,7 +81,7 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
-  if (cellData) cellDataToPointsOverRanks(s.mesh, coll);
+  if (cellData) cellDataToPointsOverRanks(s.mesh, !s.clusters.empty(), pieceNames(path, s), coll);
   return s;
 }
 

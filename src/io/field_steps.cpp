@@ -121,9 +121,9 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
   ReadOptions one;
   one.fields = {field};
   if (splitFieldRequests(arrays, vtuCellArrays(doc, pieces[0]), one).cells.loadFields)
-    throw FileError(file, "'", field,
-                    "' is cell data: it is averaged onto the points of the whole mesh, so it is "
-                    "read with the mesh (readMesh), not one step at a time");
+    throw FileError(file, "holds '", field,
+                    "' as cell data, which is read with the mesh, not one step at a time (the "
+                    "pieces of a .pvtu must hold it alike: all as cell data or all as point data)");
   const std::vector<FieldLoad> loads = planFields(file, arrays, one);
   auto load =
       std::find_if(loads.begin(), loads.end(), [&](const FieldLoad& l) { return l.step == step; });

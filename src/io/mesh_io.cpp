@@ -28,8 +28,9 @@ void checkNoPieces(const std::string& name, const ReadOptions& options) {
     throw FileError(name, "has no pieces to choose from (only a .pvtu has pieces)");
 }
 
-// Cell data asked for as fields becomes point data once the whole mesh is read (every piece of a
-// .pvtu joined), so that points between pieces average the cells of both.
+// Cell data asked for as fields becomes point data once every piece read is joined, so that
+// points between pieces average the cells of both; with `average` false it is left to the caller
+// (ranks that read some pieces each average with each other's help).
 mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool average = true) {
   for (const mesh::CellField& f : m.cellFields) {
     log::info(m.source, ": field '", f.name,

@@ -7,7 +7,7 @@ set -euo pipefail
 sm=$1 work=$2
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$work" && cd "$work"
-rm -rf cells cells.pvtu checker.pvtu ./*.pfm
+rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png ./*.pfm
 
 python3 - <<'PY'
 import math, os, struct
@@ -23,7 +23,7 @@ def corners(i, j, k):
     return [(i, j, k), (i + 1, j, k), (i + 1, j + 1, k), (i, j + 1, k),
             (i, j, k + 1), (i + 1, j, k + 1), (i + 1, j + 1, k + 1), (i, j + 1, k + 1)]
 
-def vtu(path, cells, point_values=None):
+def vtu(path, cells, point_values=None, steps=2):
     ids, pts = {}, []
     for c in cells:
         for p in corners(*c):
@@ -33,12 +33,15 @@ def vtu(path, cells, point_values=None):
     conn = ' '.join(str(ids[p]) for c in cells for p in corners(*c))
     offsets = ' '.join(str(8 * (m + 1)) for m in range(len(cells)))
     xyz = ' '.join(num(v) for p in pts for v in point(*p))
-    if point_values is None:
+    if point_values is None:  # c, a vector v = (c, 2c), and s with steps c, 2c (, 3c)
         c = [cell_value(*q) for q in cells]
+        series = ''.join('<DataArray type="Float32" Name="s@t%d" format="ascii">%s</DataArray>'
+                         % (k, ' '.join(num((k + 1) * v) for v in c)) for k in range(steps))
         data = ('<CellData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
                 '<DataArray type="Float32" Name="v" NumberOfComponents="2" format="ascii">%s'
-                '</DataArray></CellData>') % (' '.join(num(v) for v in c),
-                                              ' '.join(num(v) + ' ' + num(2 * v) for v in c))
+                '</DataArray>%s</CellData>') % (' '.join(num(v) for v in c),
+                                                ' '.join(num(v) + ' ' + num(2 * v) for v in c),
+                                                series)
     else:  # c, and a vector w = (c, 2c) whose component w[1] is a field only when named
         data = ('<PointData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
                 '<DataArray type="Float32" Name="w" NumberOfComponents="2" format="ascii">%s'
@@ -65,6 +68,9 @@ for piece in range(3):
 # piece meets the others at faces, edges and single points, and no piece is convex.
 for piece in range(3):
     vtu('cells/checker_%d.vtu' % piece, [c for c in allcells if sum(c) % 3 == piece])
+# Pieces that disagree: the second holds three steps of s.
+vtu('cells/uneven_0.vtu', [c for c in allcells if sum(c) % 3 == 0])
+vtu('cells/uneven_1.vtu', [c for c in allcells if sum(c) % 3 != 0], steps=3)
 for name, stem in (('cells.pvtu', 'cells'), ('checker.pvtu', 'checker')):
     with open(name, 'w') as out:
         out.write('<?xml version="1.0"?>\n<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>'
@@ -110,6 +116,22 @@ PY
 }
 close "cell data on 1 and 3 ranks" one.pfm three.pfm
 close "cell data in interlocked pieces on 4 ranks, one without pieces" one.pfm checker.pfm
+# Time steps of cell data on several ranks: step k is (k + 1) c, so over (k + 1) times the range
+# it is the image of c.
+mpiexec -n 4 --oversubscribe "$sm" render checker.pvtu --field s --time 1 --view iso --size 96x96 \
+  --range 1.8,5 --out steps.pfm
+close "step 1 of cell data in interlocked pieces on 4 ranks" one.pfm steps.pfm
+# Ranks whose pieces hold different steps all stop, with one message naming both.
+printf '%s' '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="cells/uneven_0.vtu"/><Piece Source="cells/uneven_1.vtu"/></PUnstructuredGrid></VTKFile>' > uneven.pvtu
+if out=$(mpiexec -n 2 --oversubscribe "$sm" render uneven.pvtu --field s --size 32x32 --out uneven.png 2>&1); then
+  echo "FAIL: uneven pieces rendered"; fails=$((fails + 1))
+elif grep -qF "uneven.pvtu: the pieces do not hold the same cell data: rank" <<<"$out" &&
+  grep -qF "(cells/uneven_0.vtu) has 's' with 2 steps" <<<"$out" &&
+  grep -qF "(cells/uneven_1.vtu) has 's' with 3 steps" <<<"$out" && [ ! -e uneven.png ]; then
+  echo "ok: uneven pieces refused on 2 ranks"
+else
+  echo "FAIL: uneven pieces: $out"; fails=$((fails + 1))
+fi
 check "cell data as the independently averaged point data" one.pfm oracle.pfm
 check "a component of cell data (2c over twice the range)" one.pfm component.pfm
 "$sm" render points.vtu --field 'w[1]' --view iso --size 96x96 --range 1.8,5 --out point-component.pfm

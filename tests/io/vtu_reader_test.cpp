@@ -190,8 +190,9 @@ TEST(VtuReader, CellDataNamedAsAFieldIsAveragedOntoThePoints) {
   oneStep.step = 0;
   EXPECT_FLOAT_EQ(valueAt(readMesh(dir + "/p.pvtu", oneStep), "p", {0, 0, 0}), 2.0f);
   // One step on its own is point data only: cell data needs the whole mesh. Said so.
-  EXPECT_NE(fileErrorOf([&] { readFieldStep(dir + "/p.pvtu", "p", 0); }).find("'p' is cell data"),
-            std::string::npos);
+  EXPECT_NE(
+      fileErrorOf([&] { readFieldStep(dir + "/p.pvtu", "p", 0); }).find("holds 'p' as cell data"),
+      std::string::npos);
   // Messages about cell data call it cell data.
   ReadOptions wide;
   wide.fields = {"v[5]"};
