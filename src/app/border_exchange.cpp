@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <limits>
+#include <numeric>
 #include <tuple>
 
 #include "common/check.h"
@@ -94,18 +95,24 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, Collectives& col
     offers[to].insert(offers[to].end(), {p.x, p.y, p.z, double(occ[i])});
     offered[to].push_back(border[i]);
   }
-  const std::vector<std::vector<double>> got = coll.exchange(offers);
+  std::vector<std::vector<double>> got = coll.exchange(offers);
+  offers.clear();
   // As meeting rank: a name offered by two or more ranks is a shared point, one group.
   std::vector<std::tuple<Key, int, uint32_t>> entries;
-  for (int s = 0; s < n; ++s)
-    for (uint32_t i = 0; i * 4 < got[s].size(); ++i) {
+  std::vector<size_t> offeredBy(n);
+  for (int s = 0; s < n; ++s) offeredBy[s] = got[s].size() / 4;
+  entries.reserve(std::accumulate(offeredBy.begin(), offeredBy.end(), size_t(0)));
+  for (int s = 0; s < n; ++s) {
+    for (size_t i = 0; i < offeredBy[s]; ++i) {
       const double* e = got[s].data() + 4 * i;
       const Position pos = positionOf({e[0], e[1], e[2]});
-      entries.push_back({{pos[0], pos[1], pos[2], uint64_t(e[3])}, s, i});
+      entries.push_back({{pos[0], pos[1], pos[2], uint64_t(e[3])}, s, uint32_t(i)});
     }
+    std::vector<double>().swap(got[s]);
+  }
   std::sort(entries.begin(), entries.end());
   std::vector<std::vector<int64_t>> group(n);
-  for (int s = 0; s < n; ++s) group[s].assign(got[s].size() / 4, -1);
+  for (int s = 0; s < n; ++s) group[s].assign(offeredBy[s], -1);
   for (size_t a = 0, b; a < entries.size(); a = b) {
     for (b = a + 1; b < entries.size() && std::get<0>(entries[b]) == std::get<0>(entries[a]);) ++b;
     if (b - a < 2) continue;  // on one rank only: the outside of the data, or a local seam
@@ -132,25 +139,35 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, Collectives& col
              " shared with other ranks");
 }
 
-void BorderExchange::addOtherRanks(std::vector<double>& perPoint, Collectives& coll) const {
-  SM_CHECK_EQ(perPoint.size(), numPoints_);
+void BorderExchange::addOtherRanks(std::vector<std::vector<double>>& columns,
+                                   Collectives& coll) const {
+  const size_t width = columns.size();
+  for (const auto& c : columns) SM_CHECK_EQ(c.size(), numPoints_);
   const int n = coll.size();
-  std::vector<std::vector<double>> values(n);
-  for (int to = 0; to < n; ++to)
-    for (uint32_t p : mine_[to]) values[to].push_back(perPoint[p]);
+  std::vector<std::vector<double>> values(n);  // per shared point, its value in every column
+  for (int to = 0; to < n; ++to) {
+    values[to].reserve(mine_[to].size() * width);
+    for (uint32_t p : mine_[to])
+      for (const auto& c : columns) values[to].push_back(c[p]);
+  }
   const std::vector<std::vector<double>> received = coll.exchange(values);
-  std::vector<double> totals(groups_, 0.0);
-  for (int s = 0; s < n; ++s) {  // in rank order: every copy gets the same sum
-    SM_CHECK_EQ(received[s].size(), groupOf_[s].size());
-    for (size_t i = 0; i < received[s].size(); ++i) totals[groupOf_[s][i]] += received[s][i];
+  std::vector<double> totals(groups_ * width, 0.0);
+  for (int s = 0; s < n; ++s) {  // in rank order: every copy gets the same sums
+    SM_CHECK_EQ(received[s].size(), groupOf_[s].size() * width);
+    for (size_t i = 0; i < groupOf_[s].size(); ++i)
+      for (size_t k = 0; k < width; ++k)
+        totals[groupOf_[s][i] * width + k] += received[s][i * width + k];
   }
   std::vector<std::vector<double>> sums(n);
   for (int s = 0; s < n; ++s)
-    for (uint32_t g : groupOf_[s]) sums[s].push_back(totals[g]);
+    for (uint32_t g : groupOf_[s])
+      sums[s].insert(sums[s].end(), totals.begin() + ptrdiff_t(g * width),
+                     totals.begin() + ptrdiff_t((g + 1) * width));
   const std::vector<std::vector<double>> back = coll.exchange(sums);
   for (int from = 0; from < n; ++from) {
-    SM_CHECK_EQ(back[from].size(), mine_[from].size());
-    for (size_t i = 0; i < back[from].size(); ++i) perPoint[mine_[from][i]] = back[from][i];
+    SM_CHECK_EQ(back[from].size(), mine_[from].size() * width);
+    for (size_t i = 0; i < mine_[from].size(); ++i)
+      for (size_t k = 0; k < width; ++k) columns[k][mine_[from][i]] = back[from][i * width + k];
   }
 }
 
@@ -222,26 +239,39 @@ void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, bool holdsPieces,
     return;
   }
   checkSameCellFields(m, holdsPieces, pieces, coll);
-  const uint64_t rounds = uint64_t(coll.max(double(cellFieldSteps(m))));
+  const uint64_t columns = 1 + uint64_t(coll.max(double(cellFieldSteps(m))));
   BorderExchange border(m, coll);
-  std::vector<double> uses = mesh::cellUsesAtPoints(m);
-  border.addOtherRanks(uses, coll);
-  if (m.cellFields.empty()) {  // a rank without pieces takes part in every round
-    for (uint64_t r = 0; r < rounds; ++r) {
-      std::vector<double> none(m.numPoints(), 0.0);
-      border.addOtherRanks(none, coll);
+  // Column 0 is the counts, then every step of every field in the order of m.cellFields (a rank
+  // without pieces has none of its own). They go in rounds of at most kBatch columns: few rounds,
+  // each an exchange among all ranks, and memory bounded whatever the number of steps.
+  constexpr uint64_t kBatch = 16;
+  std::vector<std::pair<size_t, size_t>> stepOf{{0, 0}};  // column -> (field, step)
+  for (size_t f = 0; f < m.cellFields.size(); ++f)
+    for (size_t s = 0; s < m.cellFields[f].steps.size(); ++s) stepOf.push_back({f, s});
+  std::vector<mesh::Field> fields;
+  for (const mesh::CellField& cf : m.cellFields) fields.push_back({cf.name, {}});
+  std::vector<double> uses;
+  for (uint64_t first = 0; first < columns; first += kBatch) {
+    const uint64_t last = std::min(columns, first + kBatch);
+    std::vector<std::vector<double>> batch;
+    for (uint64_t c = first; c < last; ++c) {
+      if (c == 0)
+        batch.push_back(mesh::cellUsesAtPoints(m));
+      else if (c < stepOf.size())
+        batch.push_back(mesh::cellSumsAtPoints(m, m.cellFields[stepOf[c].first], stepOf[c].second));
+      else
+        batch.emplace_back(m.numPoints(), 0.0);
     }
-    return;
-  }
-  for (const mesh::CellField& cf : m.cellFields) {
-    mesh::Field f{cf.name, {}};
-    for (size_t s = 0; s < cf.steps.size(); ++s) {
-      std::vector<double> sums = mesh::cellSumsAtPoints(m, cf, s);
-      border.addOtherRanks(sums, coll);
-      f.steps.push_back(mesh::meansAtPoints(sums, uses));
+    border.addOtherRanks(batch, coll);
+    for (uint64_t c = first; c < last; ++c) {
+      std::vector<double>& v = batch[size_t(c - first)];
+      if (c == 0)
+        uses = std::move(v);
+      else if (c < stepOf.size())
+        fields[stepOf[c].first].steps.push_back(mesh::meansAtPoints(v, uses));
     }
-    m.fields.push_back(std::move(f));
   }
+  for (mesh::Field& f : fields) m.fields.push_back(std::move(f));
   m.cellFields.clear();
 }
 

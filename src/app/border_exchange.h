@@ -24,10 +24,11 @@ class BorderExchange {
   // mesh for faces shared by more than two elements (as preparation would).
   BorderExchange(const mesh::UnstructuredMesh& m, Collectives& coll);
 
-  // Collective. Replaces each shared point's value (one per point of this rank) by the sum of the
-  // values of every rank's copy of the point, added in rank order at its meeting rank, so that
-  // every copy gets the same value, bit for bit. Every rank calls it the same number of times.
-  void addOtherRanks(std::vector<double>& perPoint, Collectives& coll) const;
+  // Collective. Each of `columns` holds one value per point of this rank. Replaces each shared
+  // point's values by the sums of the values of every rank's copy of the point, added in rank
+  // order at its meeting rank, so that every copy gets the same values, bit for bit. Every rank
+  // calls it the same number of times with the same number of columns.
+  void addOtherRanks(std::vector<std::vector<double>>& columns, Collectives& coll) const;
 
   uint64_t sharedPoints() const { return sharedPoints_; }  // of this rank: on another rank too
 

@@ -131,7 +131,7 @@ uint32_t firstVertex(const ElementArrays& elements, const FaceSlots::Slot& s) {
   throw Error(source, ": two ", mesh::cellTypePluralName(mesh::CellType(s0.type)),
               " have the same vertices (a duplicated cell", at(where, firstVertex(elements, s0)),
               "; ", elementName(s0), " and #", s1.element,
-              " after preparation): remove the duplicate");
+              " in this rank's element order): remove the duplicate");
 }
 
 [[noreturn]] void nonManifold(const std::string& source, const ElementArrays& elements,

@@ -130,10 +130,10 @@ void expectSameAsWhole(const std::vector<UnstructuredMesh>& pieces, int ranks) {
   });
 }
 
-void expectInterlockedSameAsWhole(gen::CubeSplit split, int parts, int ranks) {
+void expectInterlockedSameAsWhole(gen::CubeSplit split, int parts, int ranks, int steps = 3) {
   UnstructuredMesh whole = gen::cube(split, 5);
   dealClusters(whole, parts);
-  expectSameAsWhole(piecesOf(whole, parts, 3), ranks);
+  expectSameAsWhole(piecesOf(whole, parts, steps), ranks);
 }
 
 TEST(BorderExchange, TwoHalvesShareTheirMiddlePlane) {
@@ -145,10 +145,15 @@ TEST(BorderExchange, TwoHalvesShareTheirMiddlePlane) {
     UnstructuredMesh m = partition::extractClustersWithPointMap(whole, {c.rank()}).mesh;
     BorderExchange border(m, coll);
     EXPECT_EQ(border.sharedPoints(), 25u);  // the 5 x 5 points of the plane x = 0.5
-    std::vector<double> ones(m.numPoints(), 1.0);
-    border.addOtherRanks(ones, coll);
-    for (size_t p = 0; p < m.numPoints(); ++p)
-      EXPECT_EQ(ones[p], m.points[p].x == 0.5 ? 2.0 : 1.0) << p;
+    // Two columns: ones, and the rank's number plus one.
+    std::vector<std::vector<double>> columns{std::vector<double>(m.numPoints(), 1.0),
+                                             std::vector<double>(m.numPoints(), c.rank() + 1.0)};
+    border.addOtherRanks(columns, coll);
+    for (size_t p = 0; p < m.numPoints(); ++p) {
+      const bool shared = m.points[p].x == 0.5;
+      EXPECT_EQ(columns[0][p], shared ? 2.0 : 1.0) << p;
+      EXPECT_EQ(columns[1][p], shared ? 3.0 : c.rank() + 1.0) << p;
+    }
   });
 }
 
@@ -160,6 +165,11 @@ TEST(BorderExchange, InterlockedPyramidsWedgesAndHexahedraAverageAsTheWholeMesh)
   expectInterlockedSameAsWhole(gen::CubeSplit::Pyramids, 3, 3);
   expectInterlockedSameAsWhole(gen::CubeSplit::Wedges, 4, 2);  // two pieces per rank
   expectInterlockedSameAsWhole(gen::CubeSplit::Hex, 4, 4);
+}
+
+TEST(BorderExchange, ManyStepsGoInSeveralRounds) {
+  // 1 + 20 + 1 columns: two rounds of at most 16; rank 3 holds nothing and sends zeros.
+  expectInterlockedSameAsWhole(gen::CubeSplit::Tets5, 3, 4, 20);
 }
 
 TEST(BorderExchange, OneRankIsTheWholeMesh) {
