@@ -208,22 +208,26 @@ void checkSameCellFields(const mesh::UnstructuredMesh& m, bool holds, const std:
   const double lo = coll.min(holds ? signature : std::numeric_limits<double>::infinity());
   const double hi = coll.max(holds ? signature : -1.0);
   if (hi < 0 || lo == hi) return;
+  // Each holder's words to rank 0: who it is, a NUL, what it holds.
   const std::string mine =
-      holds ? concat("rank ", coll.rank(), " (", pieces, ") has ", fields) : std::string();
+      holds ? concat("rank ", coll.rank(), " (", pieces, ")", '\0', fields) : std::string();
   std::vector<std::vector<double>> toRank(coll.size());
   toRank[0] = asDoubles(mine);
   const std::vector<std::vector<double>> all = coll.exchange(toRank);
   std::string message;
   if (coll.rank() == 0) {
-    std::string first, other;
+    std::string first, firstFields, other;
     for (const auto& d : all) {
       const std::string text = asText(d);
       if (text.empty()) continue;
-      const std::string what = text.substr(text.find(") has ") + 6);
-      if (first.empty())
-        first = text;
-      else if (other.empty() && what != first.substr(first.find(") has ") + 6))
-        other = text;
+      const size_t cut = text.find('\0');
+      const std::string who = text.substr(0, cut), what = text.substr(cut + 1);
+      if (first.empty()) {
+        first = concat(who, " has ", what);
+        firstFields = what;
+      } else if (other.empty() && what != firstFields) {
+        other = concat(who, " has ", what);
+      }
     }
     message = concat(m.source, ": the pieces do not hold the same cell data: ", first, "; ", other);
   }
