@@ -147,6 +147,12 @@ check "view of cell data as render's image" render.png view.png
 env -u DISPLAY -u WAYLAND_DISPLAY "$sm" view cells.pvtu --field 'v[1]' "${small[@]}" --range 1.8,5 \
   --headless --frames 1 --screenshot view-v.png
 check "view of a component of cell data as render's image" render-v.png view-v.png
+# On three ranks, each reading its interlocked pieces, too.
+mpiexec -n 3 --oversubscribe "$sm" render checker.pvtu --field c "${small[@]}" --range 0.9,2.5 \
+  --out render3.png
+env -u DISPLAY -u WAYLAND_DISPLAY mpiexec -n 3 --oversubscribe "$sm" view checker.pvtu --field c \
+  "${small[@]}" --range 0.9,2.5 --headless --frames 1 --screenshot view3.png
+check "view of cell data on 3 ranks as render's image" render3.png view3.png
 # The image is not empty (a blank image would match the others too).
 python3 - <<'PY' || fails=$((fails + 1))
 import struct, sys
