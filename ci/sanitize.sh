@@ -28,7 +28,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="-O1"
   -DCMAKE_C_FLAGS="-O1" -DSHELLMARCH_SANITIZE=address,undefined -DSHELLMARCH_BUILD_TESTS=ON >/dev/null
 # Only what the chosen tests run; the GPU image tests run in the normal build only.
 timed build cmake --build "$build" -j "$jobs" --target test_mesh test_io test_partition \
-  test_prep test_gen test_ref test_compositor_unit test_reliability test_compositor_mpi test_viewer test_viewer_unit shellmarch
+  test_prep test_gen test_ref test_compositor_unit test_reliability test_compositor_mpi test_viewer test_viewer_unit test_app shellmarch
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/ci/lsan.supp:print_suppressions=0}
