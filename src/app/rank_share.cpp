@@ -1,10 +1,9 @@
 #include "app/rank_share.h"
 
-#include "app/border_exchange.h"
-
 #include <algorithm>
 #include <limits>
 
+#include "app/border_exchange.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"

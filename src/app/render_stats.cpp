@@ -1,7 +1,5 @@
 #include "app/render_stats.h"
 
-#include "common/memory.h"
-
 #include <algorithm>
 #include <cstdio>
 
@@ -39,6 +37,11 @@ StatsReport::StatsReport(const RenderJob& job, Collectives& coll) : job_(job), c
   json_["frames"] = nlohmann::json::array();
 }
 
+nlohmann::json StatsReport::spread(double v) const {
+  return nlohmann::json{
+      {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
+}
+
 void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache,
                            const prep::PreparedRank& rank, const render::GpuScene& gpu,
                            const std::string& device, const render::RenderSettings& s) {
@@ -49,11 +52,6 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["load_seconds_max"] = coll_.max(loadSeconds);
   json_["prepare_seconds_max"] = coll_.max(prepSeconds);
   json_["prepare_from_cache"] = fromCache;
-  // Per-rank load as the paper's table reports it: min, max and average over ranks.
-  auto spread = [&](double v) {
-    return nlohmann::json{
-        {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
-  };
   json_["elements"] = coll_.sum(rank.numElements());
   json_["elements_per_rank"] = spread(double(rank.numElements()));
   json_["shell_triangles"] = coll_.sum(rank.numShellTriangles());
@@ -64,10 +62,6 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
 
 void StatsReport::setHostMemory(uint64_t peakAfterLoad) {
   const double now = double(peakResidentBytes());
-  auto spread = [&](double v) {
-    return nlohmann::json{
-        {"min", coll_.min(v)}, {"max", coll_.max(v)}, {"avg", coll_.sum(v) / coll_.size()}};
-  };
   json_["host_peak_bytes_after_load_per_rank"] = spread(double(peakAfterLoad));
   json_["host_peak_bytes_after_setup_per_rank"] = spread(now);
 }

@@ -49,6 +49,9 @@ class StatsReport {
   // Counted with or without --stats: an overflow must be said either way.
   uint64_t overflow_ = 0, overflowFrames_ = 0, frames_ = 0;
   bool wanted() const;
+  // Per-rank values as the paper's table reports them: min, max and average over ranks
+  // (collective).
+  nlohmann::json spread(double v) const;
   void printSetup() const;
   void printFrame(const nlohmann::json& fr) const;
 };
