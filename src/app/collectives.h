@@ -7,27 +7,23 @@
 #include <string>
 #include <vector>
 
+#include "border/rank_exchange.h"
+
 namespace sm::comp {
 class Communicator;
 }
 
 namespace sm::app {
 
-class Collectives {
+// rank(), size() and exchange() (cell data's border sums) come from RankExchange.
+class Collectives : public border::RankExchange {
  public:
-  virtual ~Collectives() = default;
-  virtual int rank() const = 0;
-  virtual int size() const = 0;
   virtual double min(double v) = 0;
   virtual double max(double v) = 0;
   virtual double sum(double v) = 0;
   virtual uint64_t sum(uint64_t v) = 0;
   // Rank 0's `bytes` at `data` to every rank (the viewer's per-frame state).
   virtual void broadcast(void* data, uint64_t bytes) = 0;
-  // Every rank sends toRank[d] to rank d (toRank has size() entries, of any lengths) and gets
-  // back, at [s], what rank s sent it (cell data's border sums).
-  virtual std::vector<std::vector<double>> exchange(
-      const std::vector<std::vector<double>>& toRank) = 0;
   // The compositor's communicator (nullptr on one rank: no exchange).
   virtual comp::Communicator* communicator() = 0;
 };

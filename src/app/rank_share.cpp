@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "app/border_exchange.h"
+#include "app/cell_data_share.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"

@@ -8,17 +8,19 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
+#include "border/rank_exchange.h"
 #include "compositor/mpi/mpi_communicator.h"
 
 namespace sm::insitu {
 
-class Group {
+class Group final : public border::RankExchange {
  public:
   Group() = default;              // this process alone: no MPI calls
   explicit Group(MPI_Comm comm);  // collective: duplicates comm
-  int rank() const { return comm_ ? comm_->rank() : 0; }
-  int size() const { return comm_ ? comm_->size() : 1; }
+  int rank() const override { return comm_ ? comm_->rank() : 0; }
+  int size() const override { return comm_ ? comm_->size() : 1; }
   // What the compositor exchanges through; nullptr for one rank (no exchange at all).
   comp::Communicator* compositorComm() { return size() > 1 ? comm_.get() : nullptr; }
 
@@ -28,6 +30,9 @@ class Group {
   double sum(double v);  // summed in rank order
   uint64_t sum(uint64_t v);
   bool same(uint64_t v);  // every rank passed the same value
+  // Collective (cell fields' sums at shared vertices).
+  std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& toRank) override;
 
   // Runs `local` (which must not communicate), then agrees: when it threw on any rank, every rank
   // throws shellmarch::insitu::Error with the message of the lowest failed rank, prefixed by that

@@ -6,7 +6,9 @@
 #include <limits>
 #include <utility>
 
+#include "cell_fields.h"
 #include "common/error.h"
+#include "common/hash.h"
 #include "common/timer.h"
 #include "field_store.h"
 #include "frame_settings.h"
@@ -37,6 +39,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   }
 
   void setMesh(const MeshView& view);
+  void setCellField(const std::string& name, std::span<const float> values);
   Image render(const RenderSettings& settings);
   MeshFrame agreeOnFrame(const sm::mesh::UnstructuredMesh& m);
   void upload(sm::mesh::UnstructuredMesh& m);
@@ -50,6 +53,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   std::unique_ptr<sm::comp::DeepCompositor> compositor;
   std::unique_ptr<sm::render::Renderer> renderer;
   FieldStore fields;
+  sm::insitu::CellFields cellFields;
   MeshFrame frame;
   uint64_t localElements = 0;
   uint64_t retiredBuilds = 0, retiredUploads = 0;  // of scenes replaced by a later setMesh
@@ -65,6 +69,7 @@ void Renderer::Impl::releaseMesh() {
   }
   scene.reset();
   fields = FieldStore();
+  cellFields = sm::insitu::CellFields();
 }
 
 MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
@@ -84,6 +89,7 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
 
 void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m) {
   const uint64_t inputVertices = m.numPoints();  // preparation takes the points out of m
+  cellFields = sm::insitu::CellFields(m);
   sm::prep::PreparedRank prepared =
       sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
           .rank;
@@ -105,6 +111,25 @@ void Renderer::Impl::setMesh(const MeshView& view) {
     throw Error("setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
   group.agree([&] { upload(m); });
   prepareSeconds = timer.seconds();
+}
+
+void Renderer::Impl::setCellField(const std::string& name, std::span<const float> values) {
+  group.agree([&] {
+    if (!scene) throw Error("setCellField: no mesh (call setMesh first)");
+    if (name.empty()) throw Error("setCellField: the field needs a name");
+    if (values.size() != cellFields.numCells())
+      throw Error(sm::concat("setCellField '", name, "': ", values.size(), " values for ",
+                             cellFields.numCells(),
+                             " elements (one per element: the tetrahedra, then the pyramids, "
+                             "wedges and hexahedra given to setMesh)"));
+  });
+  if (!group.same(sm::hashBytes(name.data(), name.size())))
+    throw Error(sm::concat("setCellField '", name,
+                           "': the field name differs between ranks; every rank must set the "
+                           "same cell field in the same call"));
+  std::vector<float> atVertices;
+  group.runOrAbort([&] { atVertices = cellFields.toPoints(values, group); });
+  group.agree([&] { fields.set(name, atVertices); });
 }
 
 void Renderer::Impl::ensureRenderer(int width, int height) {
@@ -182,6 +207,10 @@ void Renderer::setMesh(const MeshView& mesh) {
 
 void Renderer::setField(const std::string& name, std::span<const float> values) {
   translated([&] { impl_->fields.set(name, values); });
+}
+
+void Renderer::setCellField(const std::string& name, std::span<const float> values) {
+  translated([&] { impl_->setCellField(name, values); });
 }
 
 Image Renderer::render(const RenderSettings& settings) {

@@ -43,11 +43,18 @@ float alphaAt(const api::Image& img, int x, int y) {
 
 using InsituApi = RendererSuite;
 
-// A unit cube of constant extinction sigma: every pixel's opacity is 1 - exp(-sigma L).
-void expectSlab(api::Renderer& vis, const mesh::UnstructuredMesh& m, const char* name) {
+enum class Given { PerVertex, PerElement };
+
+// A unit cube of constant extinction sigma: every pixel's opacity is 1 - exp(-sigma L), whether
+// the constant is given per vertex or per element.
+void expectSlab(api::Renderer& vis, const mesh::UnstructuredMesh& m, const char* name,
+                Given given = Given::PerVertex) {
   SimMesh sim = simMesh(m);
   vis.setMesh(sim.view());
-  vis.setField("density", std::vector<float>(sim.vertices(), 0.5f));
+  if (given == Given::PerVertex)
+    vis.setField("density", std::vector<float>(sim.vertices(), 0.5f));
+  else
+    vis.setCellField("density", std::vector<float>(m.numCells(), 0.5f));
   const double sigma = 1.3;
   api::RenderSettings s;
   s.width = s.height = 40;
@@ -82,6 +89,52 @@ TEST_F(InsituApi, SlabKnownAnswerEveryElementType) {
   expectSlab(*vis_, sm::test::wedgeGrid(2), "wedges");
   expectSlab(*vis_, sm::test::pyramidGrid(2), "pyramids");
   EXPECT_EQ(vis_->stats().geometryBuilds - builds, 4u);  // one per setMesh
+}
+
+TEST_F(InsituApi, SlabKnownAnswerFromACellField) {
+  expectSlab(*vis_, sm::test::wedgeGrid(2), "wedges", Given::PerElement);
+  expectSlab(*vis_, sm::test::pyramidGrid(2), "pyramids", Given::PerElement);
+}
+
+// A cell field becomes, at each vertex, the mean of the elements that use it (computed here
+// independently, in the caller's shuffled vertex order), and renders as that vertex field does.
+TEST_F(InsituApi, CellFieldIsTheMeanOfTheElementsAtEachVertex) {
+  SimMesh sim = shuffled(simMesh(sm::test::pyramidGrid(3)), 11);
+  const std::vector<float> cells =
+      cellField(sim, [](glm::dvec3 c) { return float(std::sin(4 * c.x) + c.y * c.z); });
+  std::vector<double> sum(sim.vertices(), 0.0), count(sim.vertices(), 0.0);
+  size_t e = 0;
+  for (int t = 0; t < 4; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    for (size_t i = 0; i < sim.cells[t].size(); i += nv, ++e)
+      for (uint32_t k = 0; k < nv; ++k) {
+        sum[size_t(sim.cells[t][i + k])] += cells[e];
+        count[size_t(sim.cells[t][i + k])] += 1;
+      }
+  }
+  std::vector<float> means(sim.vertices());
+  for (size_t v = 0; v < means.size(); ++v) means[v] = float(sum[v] / count[v]);
+  vis_->setMesh(sim.view());
+  const std::string byVertex = "by vertex", byElement = "by element";  // GCC 12 -Wrestrict
+  vis_->setField(byVertex, means);
+  vis_->setCellField(byElement, cells);
+  api::RenderSettings s;
+  s.width = 36;
+  s.height = 28;
+  s.colormap = "inferno";
+  s.range = {-1.0, 2.0};
+  s.field = byVertex;
+  api::Image want = vis_->render(s);
+  s.field = byElement;
+  api::Image got = vis_->render(s);
+  ASSERT_EQ(want.rgba.size(), got.rgba.size());
+  double maxErr = 0, maxAlpha = 0;
+  for (size_t i = 0; i < got.rgba.size(); ++i) {
+    maxErr = std::max(maxErr, double(std::abs(got.rgba[i] - want.rgba[i])));
+    if (i % 4 == 3) maxAlpha = std::max(maxAlpha, double(got.rgba[i]));
+  }
+  EXPECT_GT(maxAlpha, 0.3);
+  EXPECT_LE(maxErr, 1e-6);  // the same means up to the order of summation
 }
 
 // Vertices in the simulation's own (here shuffled) order give the image of the same mesh rendered

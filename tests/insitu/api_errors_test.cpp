@@ -111,6 +111,23 @@ TEST_F(InsituErrors, Fields) {
   expectError([&] { vis_->render(s); }, "render: no field 'pressure' on this rank (set: 't')");
 }
 
+TEST_F(InsituErrors, CellFields) {
+  dropMesh(*vis_);
+  expectError([&] { vis_->setCellField("p", std::vector<float>(2)); },
+              "setCellField: no mesh (call setMesh first)");
+  vis_->setMesh(twoTets(kPoints, kTets));
+  expectError([&] { vis_->setCellField("p", std::vector<float>(5)); },
+              "setCellField 'p': 5 values for 2 elements (one per element: the tetrahedra, then "
+              "the pyramids, wedges and hexahedra given to setMesh)");
+  expectError([&] { vis_->setCellField("", std::vector<float>(2)); },
+              "setCellField: the field needs a name");
+  const std::string name = "p";  // a literal assigned to s.field trips GCC 12's -Wrestrict
+  vis_->setCellField(name, std::vector<float>{1.0f, 3.0f});
+  api::RenderSettings s = small();
+  s.field = name;
+  EXPECT_FALSE(vis_->render(s).empty());  // usable after the errors
+}
+
 TEST_F(InsituErrors, Settings) {
   dropMesh(*vis_);
   expectError([&] { vis_->render(small()); }, "render: no mesh");

@@ -36,15 +36,16 @@ SimMesh shuffled(const SimMesh& s, uint32_t seed) {
   return out;
 }
 
-SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
+namespace {
+
+// The elements of m that `keep` accepts (type index, element index), with only their vertices.
+SimMesh subset(const mesh::UnstructuredMesh& m, const std::function<bool(int, size_t)>& keep) {
   SimMesh out;
   std::vector<int64_t> newId(m.numPoints(), -1);
   for (mesh::CellType type : mesh::kAllCellTypes) {
     const uint32_t nv = mesh::numVerts(type), t = mesh::typeIndex(type);
     for (size_t e = 0; e + nv <= m.cells[t].size(); e += nv) {
-      double x = 0;
-      for (uint32_t k = 0; k < nv; ++k) x += m.points[m.cells[t][e + k]].x / nv;
-      if (x < lo || x >= hi) continue;
+      if (!keep(int(t), e / nv)) continue;
       for (uint32_t k = 0; k < nv; ++k) {
         int64_t& id = newId[m.cells[t][e + k]];
         if (id < 0) {
@@ -57,6 +58,37 @@ SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
     }
   }
   return out;
+}
+
+}  // namespace
+
+SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
+  return subset(m, [&](int t, size_t e) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    double x = 0;
+    for (uint32_t k = 0; k < nv; ++k) x += m.points[m.cells[t][e * nv + k]].x / nv;
+    return x >= lo && x < hi;
+  });
+}
+
+SimMesh dealt(const mesh::UnstructuredMesh& m, int part, int parts) {
+  return subset(m, [&](int t, size_t e) {
+    const uint64_t i = e + 7919u * uint64_t(t);
+    return int(((i * 0x9E3779B97F4A7C15ull) >> 40) % uint64_t(parts)) == part;
+  });
+}
+
+std::vector<float> cellField(const SimMesh& s, const std::function<float(glm::dvec3)>& f) {
+  std::vector<float> values;
+  for (int t = 0; t < 4; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    for (size_t e = 0; e < s.cells[t].size(); e += nv) {
+      glm::dvec3 c(0.0);
+      for (uint32_t k = 0; k < nv; ++k) c += s.point(size_t(s.cells[t][e + k])) / double(nv);
+      values.push_back(f(c));
+    }
+  }
+  return values;
 }
 
 }  // namespace sm::insitu::test

@@ -33,5 +33,10 @@ SimMesh shuffled(const SimMesh& s, uint32_t seed);
 // The elements of m whose centroid has lo <= x < hi, with only the vertices they use, renumbered:
 // one rank's share of a partition into slabs.
 SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi);
+// The elements of m dealt to `parts` ranks by a hash of their index, rank `part`'s share with only
+// the vertices they use, renumbered: parts that interlock, meeting at faces, edges and vertices.
+SimMesh dealt(const mesh::UnstructuredMesh& m, int part, int parts);
+// One value per element of s (its types in order), from the element's centroid.
+std::vector<float> cellField(const SimMesh& s, const std::function<float(glm::dvec3)>& f);
 
 }  // namespace sm::insitu::test

@@ -5,6 +5,7 @@
 //   r.setMesh({points, tets, {}, wedges, hexes});         // collective, once
 //   for each step:
 //     r.setField("temperature", T);                      // local: copies the scalars
+//     r.setCellField("pressure", p);                     // collective: one value per element
 //     Image img = r.render(settings);                    // collective; the image on rank 0
 //
 // Collective calls must be made by every rank of the communicator, in the same order. An error
@@ -172,6 +173,15 @@ class SHELLMARCH_INSITU_API Renderer {
   // Local. Copies one field's values (one per vertex of setMesh's points, caller's order). NaN and
   // infinite values are allowed and render transparent. Only a changed field is uploaded.
   void setField(const std::string& name, std::span<const float> values);
+  // Collective: every rank calls it with the same name. Copies one field given per element (as
+  // finite-volume solvers hold their unknowns), in setMesh's order: the tetrahedra, then the
+  // pyramids, wedges and hexahedra. Each vertex gets the mean of the elements that use it, on
+  // every rank (vertices shared between ranks are found by their coordinates, bit for bit), as
+  // one process holding the whole mesh would compute it (ParaView's Cell Data to Point Data): no
+  // seam at the partition's borders. The result is held as a vertex field under `name`. A NaN
+  // element makes its vertices NaN (transparent). The first call after setMesh also finds the
+  // shared vertices; later calls exchange only their sums.
+  void setCellField(const std::string& name, std::span<const float> values);
   // Collective. Renders and composites; the image on rank 0, an empty image elsewhere.
   Image render(const RenderSettings& settings);
 

@@ -8,8 +8,9 @@
 
 #include <cmath>
 
-#include "app/border_exchange.h"
+#include "app/cell_data_share.h"
 #include "app/comm_collectives.h"
+#include "border/border_exchange.h"
 #include "common/error.h"
 #include "compositor/local_communicator.h"
 #include "gen/generate.h"
@@ -143,7 +144,7 @@ TEST(BorderExchange, TwoHalvesShareTheirMiddlePlane) {
   comp::runLocalRanks(2, [&](comp::Communicator& c) {
     CommCollectives coll(c);
     UnstructuredMesh m = partition::extractClustersWithPointMap(whole, {c.rank()}).mesh;
-    BorderExchange border(m, coll);
+    border::BorderExchange border(m, coll);
     EXPECT_EQ(border.sharedPoints(), 25u);  // the 5 x 5 points of the plane x = 0.5
     // Two columns: ones, and the rank's number plus one.
     std::vector<std::vector<double>> columns{std::vector<double>(m.numPoints(), 1.0),

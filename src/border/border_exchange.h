@@ -1,16 +1,15 @@
 // Points a rank shares with other ranks, found by their coordinates, and per-point sums added up
-// across them: how cell data read piece by piece is averaged onto the points as if the whole mesh
-// had been read (mesh::cellFieldsToPoints), without any rank reading the whole mesh.
+// across them: how cell data held piece by piece (a .pvtu's pieces, a simulation's partition) is
+// averaged onto the points as if one process held the whole mesh (mesh::cellFieldsToPoints).
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
-#include "app/collectives.h"
+#include "border/rank_exchange.h"
 #include "mesh/unstructured_mesh.h"
 
-namespace sm::app {
+namespace sm::border {
 
 class BorderExchange {
  public:
@@ -22,13 +21,13 @@ class BorderExchange {
   // the meeting rank tells each sender which of its points another rank has too. Traffic is
   // proportional to the boundary, whatever the shape of the parts. Throws sm::Error naming the
   // mesh for faces shared by more than two elements (as preparation would).
-  BorderExchange(const mesh::UnstructuredMesh& m, Collectives& coll);
+  BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll);
 
   // Collective. Each of `columns` holds one value per point of this rank. Replaces each shared
   // point's values by the sums of the values of every rank's copy of the point, added in rank
   // order at its meeting rank, so that every copy gets the same values, bit for bit. Every rank
   // calls it the same number of times with the same number of columns.
-  void addOtherRanks(std::vector<std::vector<double>>& columns, Collectives& coll) const;
+  void addOtherRanks(std::vector<std::vector<double>>& columns, RankExchange& coll) const;
 
   uint64_t sharedPoints() const { return sharedPoints_; }  // of this rank: on another rank too
 
@@ -40,13 +39,4 @@ class BorderExchange {
   uint64_t sharedPoints_ = 0;
 };
 
-// Averages the cell fields of a rank's share (read with io::ReadOptions::cellDataOnPoints false)
-// onto its points, the cells of every rank counted: for conforming pieces that do not overlap, the
-// result equals what mesh::cellFieldsToPoints gives the welded whole, up to the order of
-// summation. Collective; `holdsPieces` false for a rank that read no pieces (it takes part with an
-// empty mesh); `pieces` names this rank's pieces in messages. Throws sm::Error on every rank when
-// ranks holding pieces disagree about the cell fields' names or step counts.
-void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, bool holdsPieces,
-                               const std::string& pieces, Collectives& coll);
-
-}  // namespace sm::app
+}  // namespace sm::border

@@ -1,0 +1,39 @@
+#include "cell_fields.h"
+
+#include "common/check.h"
+
+namespace sm::insitu {
+
+CellFields::CellFields(const mesh::UnstructuredMesh& input) : numCells_(input.numCells()) {
+  mesh_.source = "setCellField";
+  mesh_.points = input.points;
+  mesh_.cells = input.cells;
+}
+
+void CellFields::findSharedPoints(border::RankExchange& ranks) {
+  found_ = true;
+  uses_ = mesh::cellUsesAtPoints(mesh_);
+  if (ranks.size() == 1) return;
+  border_ = std::make_unique<border::BorderExchange>(mesh_, ranks);
+  std::vector<std::vector<double>> columns{std::move(uses_)};
+  border_->addOtherRanks(columns, ranks);
+  uses_ = std::move(columns[0]);
+}
+
+std::vector<float> CellFields::toPoints(std::span<const float> values,
+                                        border::RankExchange& ranks) {
+  SM_CHECK_EQ(values.size(), numCells_);
+  if (!found_) findSharedPoints(ranks);
+  std::vector<std::vector<double>> sums(1, std::vector<double>(mesh_.numPoints(), 0.0));
+  size_t cell = 0;
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    const std::vector<uint32_t>& ids = mesh_.cells[t];
+    for (size_t i = 0; i < ids.size(); i += nv, ++cell)
+      for (uint32_t k = 0; k < nv; ++k) sums[0][ids[i + k]] += values[cell];
+  }
+  if (border_) border_->addOtherRanks(sums, ranks);
+  return mesh::meansAtPoints(sums[0], uses_);
+}
+
+}  // namespace sm::insitu

@@ -1,0 +1,43 @@
+// Cell data a simulation hands over (one value per element, as finite-volume solvers hold their
+// unknowns), averaged onto the vertices over the elements of every rank that use them: what a
+// one-process run over the whole mesh would give (mesh::cellFieldsToPoints, ParaView's Cell Data
+// to Point Data), so that a partition's borders leave no seam in the image.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "border/border_exchange.h"
+#include "mesh/unstructured_mesh.h"
+
+namespace sm::insitu {
+
+class CellFields {
+ public:
+  CellFields() = default;  // no mesh yet
+  // Keeps the points and cells of this rank's mesh as setMesh built it, before preparation takes
+  // them (about 4 bytes per element vertex and 24 per vertex): the values of a later call are
+  // summed at the caller's vertices.
+  explicit CellFields(const mesh::UnstructuredMesh& input);
+
+  uint64_t numCells() const { return numCells_; }
+  // Collective: every rank calls it, with its own cells' values in setMesh's order (tetrahedra,
+  // then pyramids, wedges, hexahedra). Returns one value per vertex of setMesh's points: the mean
+  // of the values of the elements, on every rank, that use it (NaN for a vertex no element uses;
+  // a NaN element makes its vertices NaN). The first call finds the vertices shared with other
+  // ranks (by their coordinates, bit for bit) and counts the elements at each.
+  std::vector<float> toPoints(std::span<const float> values, border::RankExchange& ranks);
+
+ private:
+  void findSharedPoints(border::RankExchange& ranks);
+
+  mesh::UnstructuredMesh mesh_;  // points and cells only
+  uint64_t numCells_ = 0;
+  bool found_ = false;  // findSharedPoints has run (collective: a flag, not a size test)
+  std::unique_ptr<border::BorderExchange> border_;  // null on one rank: nothing is shared
+  std::vector<double> uses_;                        // elements at each vertex, every rank's
+};
+
+}  // namespace sm::insitu
