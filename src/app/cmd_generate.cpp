@@ -47,8 +47,8 @@ mesh::UnstructuredMesh analyticMesh(const std::string& kind, int cubeN) {
 
 // Option checks that CLI11 cannot express, each naming its option.
 void validate(const GenerateArgs& a, const CLI::App& cmd) {
-  if (fileExtension(a.out) != ".pvtu")
-    throw Error("--out: expected a .pvtu file, got '", a.out, "'");
+  if (fileExtension(a.out) != ".pvtu" && fileExtension(a.out) != ".pvd")
+    throw Error("--out: expected a .pvtu file (or a .pvd time series), got '", a.out, "'");
   if (a.clusters < 1) throw Error("--clusters: must be at least 1, got ", a.clusters);
   // Each step is a field array of the whole mesh, written into every piece: a bound like
   // --elements', before anything is allocated.
@@ -112,7 +112,10 @@ void runGenerate(const GenerateArgs& a, const CLI::App& cmd) {
     partition::assignMetisClusters(m, a.clusters, a.seed);
     gen::addAnalyticFields(m, a.steps);
   }
-  io::writePvtu(a.out, m);
+  if (fileExtension(a.out) == ".pvd")
+    io::writePvdSeries(a.out, m);  // a .pvtu per step, as solvers write a time series
+  else
+    io::writePvtu(a.out, m);
   std::printf("%s\n", summary(a.out, m, timer.seconds()).c_str());
 }
 
@@ -139,7 +142,9 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--threads", args->threads,
                   "gmsh threads (0: all cores; 1 gives bit-identical meshes)")
       ->capture_default_str();
-  cmd->add_option("--out", args->out, "Output .pvtu (pieces go beside it)")->required();
+  cmd->add_option("--out", args->out,
+                  "Output .pvtu (pieces go beside it), or .pvd (a time series: a .pvtu per step)")
+      ->required();
   cmd->callback([args, cmd] { runGenerate(*args, *cmd); });
 }
 

@@ -5,7 +5,6 @@
 
 #include "app/cell_data_share.h"
 #include "common/error.h"
-#include "common/file_util.h"
 #include "common/log.h"
 #include "partition/partition.h"
 
@@ -31,12 +30,6 @@ std::vector<int> clustersOfRank(const std::vector<int>& clusterToRank, int rank)
   return mine;
 }
 
-// Formats whose steps io::readFieldStep reads without reading the whole file again.
-bool canStream(const std::string& path) {
-  const std::string ext = fileExtension(path);
-  return ext == ".vtu" || ext == ".pvtu";
-}
-
 // Reading for a stream: one step per field in memory, the step counts from the headers.
 io::ReadOptions streamRead(const std::string& path, const ShareOptions& o, StepStream& stream) {
   stream.read = o.read;
@@ -50,9 +43,9 @@ io::ReadOptions streamRead(const std::string& path, const ShareOptions& o, StepS
 // The files of a rank's pieces, for messages.
 std::string pieceNames(const std::string& path, const RankShare& s) {
   if (s.clusters.empty()) return {};
-  const std::vector<std::string> files = io::meshFiles(path);  // the index, then the pieces
+  const std::vector<std::string> files = io::pieceFiles(path);
   std::string names;
-  for (int c : s.clusters) names += (names.empty() ? "" : ", ") + files.at(size_t(c) + 1);
+  for (int c : s.clusters) names += (names.empty() ? "" : ", ") + files.at(size_t(c));
   return names;
 }
 
@@ -95,7 +88,7 @@ std::vector<uint32_t> composePointMaps(const std::vector<uint32_t>& base,
 RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives& coll) {
   RankShare s;
   io::ReadOptions read = o.read;
-  if (o.streamSteps && canStream(path)) read = streamRead(path, o, s.stream.emplace());
+  if (o.streamSteps && io::readsStepsAlone(path)) read = streamRead(path, o, s.stream.emplace());
   mesh::UnstructuredMesh whole = io::readMesh(path, read);
   if (o.metisClusters > 0) partition::assignMetisClusters(whole, o.metisClusters);
   std::vector<uint64_t> sizes = partition::clusterSizes(whole);
@@ -131,7 +124,7 @@ RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collecti
   const bool cellData = o.cellData ? *o.cellData : fieldsAreCellData(path, o.read, coll);
   ShareOptions reading = o;
   reading.streamSteps = o.streamSteps && !cellData;
-  const bool pieces = fileExtension(path) == ".pvtu" && o.metisClusters == 0;
+  const bool pieces = io::readsByPiece(path) && o.metisClusters == 0;
   RankShare s = pieces ? readPieces(path, reading, cellData, coll) : readWhole(path, reading, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);
   render::ElementSizeSum local = render::elementSizeSum(s.mesh);

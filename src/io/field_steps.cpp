@@ -9,6 +9,7 @@
 #include "io/mesh_io.h"
 #include "io/numeric_array.h"
 #include "io/readers.h"
+#include "io/series.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
 
@@ -189,6 +190,7 @@ std::vector<FieldStepCount> listFieldSteps(const std::string& path, const ReadOp
   const std::string ext = fileExtension(path);
   if (ext == ".vtu") return vtuFieldSteps(path, options);
   if (ext == ".pvtu") return pvtuFieldSteps(path, options);
+  if (isSeries(path)) return seriesFieldSteps(path, options);
   ReadOptions o = options;
   o.step.reset();
   o.loadFields = true;
@@ -203,12 +205,15 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
     values = vtuFieldStep(path, field, step, options.threads);
   else if (ext == ".pvtu")
     values = pvtuFieldStep(path, field, step, options);
+  else if (isSeries(path))
+    return seriesFieldStep(path, field, step, options, pointMap);
   else
     values = wholeReadFieldStep(path, field, step, options);
   return mapPoints(path, std::move(values), pointMap);
 }
 
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
+  if (isSeries(path)) return asksForCellData(readSeriesIndex(path).at(0).file, options);
   const std::string ext = fileExtension(path);
   if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && ext != ".pvtu"))
     return false;

@@ -6,11 +6,12 @@
 #include "common/file_util.h"
 #include "common/log.h"
 #include "io/readers.h"
+#include "io/series.h"
 
 namespace sm::io {
 namespace {
 
-enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid };
+enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid, Series };
 
 Format formatOf(const std::string& path) {
   const std::string ext = fileExtension(path);
@@ -18,8 +19,10 @@ Format formatOf(const std::string& path) {
   if (ext == ".pvtu") return Format::Pvtu;
   if (ext == ".vtk") return Format::LegacyVtk;
   if (ext == ".ugrid") return Format::Ugrid;
+  if (isSeries(path)) return Format::Series;
   throw Error(path, ": unknown mesh format '", ext,
-              "' (shellmarch reads .vtu, .pvtu, legacy .vtk and .ugrid files)");
+              "' (shellmarch reads .vtu, .pvtu, legacy .vtk and .ugrid files, and time series of "
+              "them as .pvd or .series files)");
 }
 
 // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
@@ -49,7 +52,7 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool avera
 
 mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& options) {
   const Format format = formatOf(path);
-  if (format != Format::Pvtu) checkNoPieces(path, options);
+  if (format != Format::Pvtu && format != Format::Series) checkNoPieces(path, options);
   switch (format) {
     case Format::Vtu:
       return readVtu(FileBytes::open(path), path, options);
@@ -59,8 +62,15 @@ mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& o
       return readLegacyVtk(FileBytes::open(path), path, options);
     case Format::Ugrid:
       return readUgrid(FileBytes::open(path), path, options, true);
+    case Format::Series:
+      return readSeries(path, options, &readAnyMesh);
   }
   return {};
+}
+
+// The file that stands for a series in questions about pieces and headers: its first step.
+std::string firstFile(const std::string& path) {
+  return isSeries(path) ? readSeriesIndex(path).at(0).file : path;
 }
 
 }  // namespace
@@ -84,18 +94,46 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
                                   options.cellDataOnPoints);
     case Format::Ugrid:
       return readUgrid(FileBytes::copyOf(bytes), name, options, false);
+    case Format::Series:
+      throw Error(name, ": a series names its steps by file; read it with readMesh");
   }
   return {};
 }
 
 int countPieces(const std::string& path) {
-  return formatOf(path) == Format::Pvtu ? countPvtuPieces(path) : 1;
+  const std::string file = firstFile(path);
+  return formatOf(file) == Format::Pvtu ? countPvtuPieces(file) : 1;
+}
+
+bool readsByPiece(const std::string& path) {
+  return formatOf(firstFile(path)) == Format::Pvtu;
+}
+
+bool readsStepsAlone(const std::string& path) {
+  const Format f = formatOf(firstFile(path));
+  return f == Format::Vtu || f == Format::Pvtu;
+}
+
+std::vector<std::string> pieceFiles(const std::string& path) {
+  const std::string file = firstFile(path);
+  return formatOf(file) == Format::Pvtu ? pvtuPieceFiles(file) : std::vector<std::string>{file};
+}
+
+std::vector<uint64_t> pieceCellCounts(const std::string& path) {
+  const std::string file = firstFile(path);
+  if (formatOf(file) != Format::Pvtu)
+    throw FileError(path, "has no pieces (only a .pvtu, or a series of them, has pieces)");
+  return pvtuPieceCellCounts(file);
 }
 
 std::vector<std::string> meshFiles(const std::string& path) {
   std::vector<std::string> files{path};
-  if (formatOf(path) == Format::Pvtu)
+  if (formatOf(path) == Format::Series) {
+    for (const SeriesStep& s : readSeriesIndex(path))
+      for (std::string& f : meshFiles(s.file)) files.push_back(std::move(f));
+  } else if (formatOf(path) == Format::Pvtu) {
     for (std::string& piece : pvtuPieceFiles(path)) files.push_back(std::move(piece));
+  }
   return files;
 }
 
@@ -109,6 +147,11 @@ std::string formatDescription(const std::string& path) {
       return "legacy VTK unstructured grid (.vtk)";
     case Format::Ugrid:
       return "AFLR3/FUN3D UGRID (.ugrid)";
+    case Format::Series: {
+      const std::vector<SeriesStep> steps = readSeriesIndex(path);
+      return concat("time series (", fileExtension(path) == ".pvd" ? "ParaView .pvd" : ".series",
+                    ") of ", steps.size(), " files, each a ", formatDescription(steps[0].file));
+    }
   }
   return {};
 }

@@ -6,6 +6,9 @@
 //          (OFFSETS/CONNECTIVITY)
 //   .ugrid FUN3D/AFLR3 (.ugrid ascii; .b8/.lb8 binary, .b8l/.lb8l 64-bit ints, ...), fields from
 //          float32 side files (docs/FORMATS.md)
+//   .pvd, .series  time series of one mesh, a file per step (ParaView's data collection, or the
+//          JSON file series NAME.vtu.series): the first file's mesh, each field's step k from the
+//          k-th file in time order; options.pieces apply to every step's .pvtu
 // Time steps in VTK XML files are point arrays named "NAME@t<K>" (K = 0, 1, ...), grouped into one
 // field NAME with K steps; a plain "NAME" is a field with one step.
 #pragma once
@@ -55,14 +58,22 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
 // sm::Error for a name no reader accepts.
 std::string formatDescription(const std::string& path);
 
-// Pieces in a .pvtu without reading them (1 for every other format).
+// Pieces in a .pvtu, or a series of them, without reading them (1 for every other format).
 int countPieces(const std::string& path);
+// True for a .pvtu or a series of them: ranks can read some pieces each (ReadOptions::pieces).
+bool readsByPiece(const std::string& path);
+// True when readFieldStep reads a step without reading the whole file again (.vtu, .pvtu, and
+// series of them): what streaming a time series needs.
+bool readsStepsAlone(const std::string& path);
+// The files of the pieces of a .pvtu (or of a series' first step), for messages; else the file.
+std::vector<std::string> pieceFiles(const std::string& path);
 
-// The mesh files readMesh(path) reads: `path`, and a .pvtu's pieces. (Outputs must not be one.)
+// The mesh files readMesh(path) reads: `path`, a .pvtu's pieces, a series' files and their
+// pieces. (Outputs must not be one.)
 std::vector<std::string> meshFiles(const std::string& path);
 
-// Cells each piece of a .pvtu declares in its header (the pieces are not read): what ranks need to
-// share pieces out by element count before each reads only its own.
+// Cells each piece of a .pvtu (or of a series' first step) declares in its header (the pieces are
+// not read): what ranks need to share pieces out by element count before each reads only its own.
 std::vector<uint64_t> pieceCellCounts(const std::string& path);
 
 // A point field readMesh loads and its number of time steps.
@@ -105,6 +116,11 @@ struct WriteOptions {
 // renamed when complete.
 void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
                const WriteOptions& options = {});
+// Writes a time series: PATH_STEM/PATH_STEM_t<K>.pvtu for each step K (every field at step K, or
+// its last), and the .pvd at `path` naming them with mesh.timeValues (or K when there are none),
+// written last. readMesh(path) reads it back as the same fields and steps.
+void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
+                    const WriteOptions& options = {});
 // Writes one .vtu (appended raw, optional zlib) with the cluster ids as a cell array "cluster".
 void writeVtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
               const WriteOptions& options = {});

@@ -54,33 +54,55 @@ int countPvtuPieces(const std::string& path) {
 
 namespace {
 
-// NumberOfCells of the <Piece> elements in the first bytes of a .vtu: the XML header precedes
-// appended data, so a rank can size a piece without reading it.
-uint64_t declaredCells(const std::string& file) {
-  const std::string head = FileBytes::readPrefix(file, 1 << 16);
+// NumberOfPoints and NumberOfCells of the <Piece> elements in the first bytes of a .vtu: the XML
+// header precedes appended data, so a rank can size a piece without reading it.
+DeclaredSize declaredVtuSize(const std::string& file, size_t prefix = 1 << 12) {
+  const std::string head = FileBytes::readPrefix(file, prefix);
   checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
-  uint64_t cells = 0;
+  DeclaredSize size;
   bool found = false;
-  for (size_t at = head.find("<Piece"); at != std::string::npos; at = head.find("<Piece", at + 6)) {
-    size_t a = head.find("NumberOfCells=\"", at);
-    size_t close = head.find('>', at);
-    if (a == std::string::npos || a > close) continue;
+  auto number = [&](size_t at, size_t close, const char* key) -> uint64_t {
+    const std::string attr = std::string(key) + "=\"";
+    size_t a = head.find(attr, at);
+    if (a == std::string::npos || a > close) return 0;
+    const char* first = head.c_str() + a + attr.size();
     char* end = nullptr;
-    unsigned long long n = std::strtoull(head.c_str() + a + 15, &end, 10);
-    if (end == head.c_str() + a + 15) throw FileError(file, "NumberOfCells is not a number");
-    cells += n;
+    unsigned long long n = std::strtoull(first, &end, 10);
+    if (end == first) throw FileError(file, key, " is not a number");
+    return n;
+  };
+  for (size_t at = head.find("<Piece"); at != std::string::npos; at = head.find("<Piece", at + 6)) {
+    const size_t close = head.find('>', at);
+    if (head.find("NumberOfCells=\"", at) > close) continue;
+    size.cells += number(at, close, "NumberOfCells");
+    size.points += number(at, close, "NumberOfPoints");
     found = true;
   }
+  // A series checks every step's header: 4 KiB hold the <Piece> tags of nearly every file.
+  if (!found && prefix < (1 << 16) && head.size() == prefix) return declaredVtuSize(file, 1 << 16);
   if (!found) throw FileError(file, "no <Piece NumberOfCells=...> in its header");
-  return cells;
+  return size;
 }
 
 }  // namespace
 
-std::vector<uint64_t> pieceCellCounts(const std::string& path) {
+std::vector<uint64_t> pvtuPieceCellCounts(const std::string& path) {
   std::vector<uint64_t> counts;
-  for (const std::string& file : pvtuPieceFiles(path)) counts.push_back(declaredCells(file));
+  for (const std::string& file : pvtuPieceFiles(path))
+    counts.push_back(declaredVtuSize(file).cells);
   return counts;
+}
+
+DeclaredSize declaredSize(const std::string& path, const ReadOptions& options) {
+  if (fileExtension(path) == ".vtu") return declaredVtuSize(path);
+  const std::vector<std::string> files = pvtuPieceFiles(path);
+  DeclaredSize total;
+  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
+    const DeclaredSize piece = declaredVtuSize(files[i]);
+    total.points += piece.points;
+    total.cells += piece.cells;
+  }
+  return total;
 }
 
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,

@@ -25,6 +25,15 @@ using OpenFile = std::function<FileBytes(const std::string& path)>;
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,
                                 const OpenFile& open = &FileBytes::open);
 int countPvtuPieces(const std::string& path);
+// Cells each piece of a .pvtu declares in its header.
+std::vector<uint64_t> pvtuPieceCellCounts(const std::string& path);
+// Points and cells a .vtu, or the pieces of a .pvtu in options.pieces, declare in their headers
+// (nothing else is read).
+struct DeclaredSize {
+  uint64_t points = 0, cells = 0;
+  bool operator==(const DeclaredSize&) const = default;
+};
+DeclaredSize declaredSize(const std::string& path, const ReadOptions& options);
 // The piece files a .pvtu names (paths resolved against its folder).
 std::vector<std::string> pvtuPieceFiles(const std::string& path);
 std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open);

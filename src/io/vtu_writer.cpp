@@ -399,4 +399,40 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   staged.commit();
 }
 
+// A time series the way solvers write one: a .pvtu per step, holding its fields at that step, and
+// a ParaView data collection naming them with their times (ParaView and VisIt open it as such).
+void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
+                    const WriteOptions& options) {
+  const fs::path p(path);
+  const std::string stem = p.stem().string();
+  const uint64_t steps = std::max<uint64_t>(1, mesh.numSteps());
+  if (!mesh.timeValues.empty() && mesh.timeValues.size() != steps)
+    throw Error(path, ": the mesh has ", steps, " time steps but ", mesh.timeValues.size(),
+                " time values");
+  std::error_code ec;
+  if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
+    throw FileError(path, "cannot write: exists and is not a regular file");
+  // One copy of the geometry, whose fields hold one step at a time.
+  mesh::UnstructuredMesh step = mesh;
+  std::string sets;
+  for (uint64_t k = 0; k < steps; ++k) {
+    for (size_t f = 0; f < mesh.fields.size(); ++f) {
+      const mesh::Field& all = mesh.fields[f];
+      step.fields[f].steps = {all.steps[std::min<uint64_t>(k, all.numSteps() - 1)]};
+    }
+    step.timeValues.clear();
+    const std::string file = concat(stem, "/", stem, "_t", k, ".pvtu");
+    writePvtu((p.parent_path() / file).string(), step, options);
+    char time[32];  // every digit: times read back exactly
+    std::snprintf(time, sizeof time, "%.17g",
+                  mesh.timeValues.empty() ? double(k) : mesh.timeValues[k]);
+    sets += concat("    <DataSet timestep=\"", time, "\" part=\"0\" file=\"", xmlEscape(file),
+                   "\"/>\n");
+  }
+  const std::string x =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n" +
+      sets + "  </Collection>\n</VTKFile>\n";
+  writeBytesAtomically(path, {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
+}
+
 }  // namespace sm::io

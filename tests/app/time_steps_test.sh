@@ -63,6 +63,31 @@ json rep.json "not j['sequence']['prefetch'] and j['sequence']['frames'] == 8"
 json rep.json "j['sequence']['fps_stddev'] >= 0 and j['sequence']['fps_min'] <= j['sequence']['fps_max']"
 json rep.json "j['sequence']['geometry_builds']['max'] == 1 and j['sequence']['scalar_uploads']['max'] == 8"
 
+# The same steps written as solvers write a time series (a .pvtu per step, named by a .pvd with
+# their times): streamed the same way, each frame bit for bit the .pvtu's frame on as many ranks.
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 5 --steps 4 --out series.pvd
+"$sm" info series.pvd > series.info
+grep -q "time series (ParaView .pvd) of 4 files" series.info || fail "info does not name the series"
+grep -q "vortex: 4 steps" series.info || fail "info does not count the series' steps"
+for n in 1 3; do
+  mpi $n "$sm" render series.pvd "${view[@]}" --time all --stats-json series$n.json --out series$n.pfm
+  for k in 0 1 2 3; do
+    cmp series${n}_000$k.pfm seq${n}_000$k.pfm || fail "series frame $k on $n rank(s) is not the .pvtu's"
+  done
+  json series$n.json "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1} and j['sequence']['prefetch']"
+done
+# A step whose file holds another mesh is refused before any frame is written.
+"$sm" generate --analytic cube-tets6 --cube-n 5 --clusters 5 --steps 4 --out smaller.pvd
+sed 's|series/series_t2.pvtu|smaller/smaller_t2.pvtu|' series.pvd > grown.pvd
+for n in 1 3; do
+  if mpi $n "$sm" render grown.pvd "${view[@]}" --time all --out grown$n.pfm >grown$n.log 2>&1; then
+    fail "a series whose step 2 is another mesh rendered on $n rank(s)"
+  fi
+  grep -q "grown.pvd: step 2 .* every step of a series must be the same mesh" grown$n.log ||
+    { cat grown$n.log; fail "no message naming the series and the step ($n rank(s))"; }
+  if ls grown${n}_*.pfm >/dev/null 2>&1; then fail "a frame was written ($n rank(s))"; fi
+done
+
 # Pieces with different step counts are refused, naming the file and the counts, whether one
 # rank reads them all or each rank its own: the outcome must not depend on the rank count. No
 # frame is written.

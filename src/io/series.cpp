@@ -1,0 +1,225 @@
+#include "io/series.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+#include "common/error.h"
+#include "common/file_util.h"
+#include "io/file_bytes.h"
+#include "io/readers.h"
+
+namespace sm::io {
+namespace {
+
+std::string describeTime(double t) {
+  return concat(t);
+}
+
+std::vector<SeriesStep> pvdSteps(const std::string& path, const std::string& text) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result ok = doc.load_buffer(text.data(), text.size());
+  if (!ok) throw FileError(path, "is not well-formed XML (", ok.description(), ")");
+  pugi::xml_node root = doc.child("VTKFile");
+  if (!root || std::string_view(root.attribute("type").value()) != "Collection")
+    throw FileError(path, "is not a ParaView data collection (<VTKFile type=\"Collection\">)");
+  pugi::xml_node collection = root.child("Collection");
+  if (!collection) throw FileError(path, "has no <Collection> element");
+  std::vector<SeriesStep> steps;
+  for (pugi::xml_node set : collection.children("DataSet")) {
+    const std::string file = set.attribute("file").value();
+    if (file.empty()) throw FileError(path, "data set ", steps.size(), " has no file attribute");
+    SeriesStep s{joinPath(directoryOf(path), file), double(steps.size())};
+    if (pugi::xml_attribute t = set.attribute("timestep")) {
+      char* end = nullptr;
+      s.time = std::strtod(t.value(), &end);
+      if (end == t.value() || *end != '\0')
+        throw FileError(path, "data set '", file, "' has timestep \"", t.value(),
+                        "\", not a number");
+    }
+    steps.push_back(std::move(s));
+  }
+  return steps;
+}
+
+std::vector<SeriesStep> jsonSteps(const std::string& path, const std::string& text) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, "is not valid JSON (", e.what(), ")");
+  }
+  if (!j.is_object() || !j.contains("files") || !j["files"].is_array())
+    throw FileError(path, "is not a file series (a JSON object with a \"files\" array)");
+  std::vector<SeriesStep> steps;
+  for (const nlohmann::json& f : j["files"]) {
+    if (!f.is_object() || !f.contains("name") || !f["name"].is_string())
+      throw FileError(path, "entry ", steps.size(), " of \"files\" has no \"name\" string");
+    SeriesStep s{joinPath(directoryOf(path), f["name"].get<std::string>()), double(steps.size())};
+    if (f.contains("time")) {
+      if (!f["time"].is_number())
+        throw FileError(path, "entry '", f["name"].get<std::string>(),
+                        "' has a \"time\" that is not a number");
+      s.time = f["time"].get<double>();
+    }
+    steps.push_back(std::move(s));
+  }
+  return steps;
+}
+
+void checkSteps(const std::string& path, std::vector<SeriesStep>& steps) {
+  if (steps.empty()) throw FileError(path, "names no files");
+  for (const SeriesStep& s : steps) {
+    if (!std::isfinite(s.time))
+      throw FileError(path, "file '", s.file, "' has time ", describeTime(s.time),
+                      ", not a finite number");
+    if (isSeries(s.file)) throw FileError(path, "names another series ('", s.file, "')");
+    if (fileExtension(s.file) != fileExtension(steps[0].file))
+      throw FileError(path, "mixes formats: '", steps[0].file, "' and '", s.file,
+                      "' (every step must be the same kind of file)");
+  }
+  std::stable_sort(steps.begin(), steps.end(),
+                   [](const SeriesStep& a, const SeriesStep& b) { return a.time < b.time; });
+  for (size_t i = 1; i < steps.size(); ++i)
+    if (steps[i].time == steps[i - 1].time)
+      throw FileError(path, "time ", describeTime(steps[i].time), " has two files ('",
+                      steps[i - 1].file, "' and '", steps[i].file,
+                      "'); shellmarch reads one mesh per time step (join parts as the pieces "
+                      "of a .pvtu)");
+}
+
+// Formats whose headers give the sizes and whose fields are read one array at a time.
+bool readsByArray(const std::string& file) {
+  const std::string ext = fileExtension(file);
+  return ext == ".vtu" || ext == ".pvtu";
+}
+
+std::string stepName(uint64_t k, const SeriesStep& s) {
+  return concat("step ", k, " ('", s.file, "')");
+}
+
+// Step k's file must hold the mesh of step 0 (sizes from the headers; the geometry is not read).
+void checkSameSize(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+                   const ReadOptions& options, const DeclaredSize& first) {
+  const DeclaredSize mine = declaredSize(steps[k].file, options);
+  if (mine == first) return;
+  throw FileError(path, stepName(k, steps[k]), " has ", mine.points, " points and ", mine.cells,
+                  " cells, step 0 ('", steps[0].file, "') ", first.points, " and ", first.cells,
+                  ": every step of a series must be the same mesh");
+}
+
+void checkSameSize(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+                   const ReadOptions& options) {
+  if (k > 0 && readsByArray(steps[k].file))
+    checkSameSize(path, steps, k, options, declaredSize(steps[0].file, options));
+}
+
+// A file of a series holds one step of each field.
+void checkOneStep(const std::string& path, uint64_t k, const SeriesStep& s,
+                  const std::string& field, uint64_t steps) {
+  if (steps > 1)
+    throw FileError(path, stepName(k, s), " holds field '", field, "' with ", steps,
+                    " time steps; in a series each file holds one step");
+}
+
+void appendStep(const std::string& path, uint64_t k, const SeriesStep& s, mesh::UnstructuredMesh& m,
+                mesh::UnstructuredMesh next) {
+  if (next.numPoints() != m.numPoints() || next.numCells() != m.numCells())
+    throw FileError(path, stepName(k, s), " has ", next.numPoints(), " points and ",
+                    next.numCells(), " cells, step 0 ", m.numPoints(), " and ", m.numCells(),
+                    ": every step of a series must be the same mesh");
+  for (mesh::Field& f : m.fields) {
+    auto g = std::find_if(next.fields.begin(), next.fields.end(),
+                          [&](const mesh::Field& p) { return p.name == f.name; });
+    if (g == next.fields.end())
+      throw FileError(path, stepName(k, s), " has no point field '", f.name, "'");
+    checkOneStep(path, k, s, f.name, g->numSteps());
+    f.steps.push_back(std::move(g->steps[0]));
+  }
+  for (mesh::CellField& f : m.cellFields) {
+    auto g = std::find_if(next.cellFields.begin(), next.cellFields.end(),
+                          [&](const mesh::CellField& c) { return c.name == f.name; });
+    if (g == next.cellFields.end())
+      throw FileError(path, stepName(k, s), " has no cell field '", f.name, "'");
+    checkOneStep(path, k, s, f.name, g->steps.size());
+    f.steps.push_back(std::move(g->steps[0]));
+  }
+}
+
+}  // namespace
+
+bool isSeries(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  return ext == ".pvd" || ext == ".series";
+}
+
+std::vector<SeriesStep> readSeriesIndex(const std::string& path) {
+  const std::string text = FileBytes::readPrefix(path, size_t(1) << 28);
+  std::vector<SeriesStep> steps =
+      fileExtension(path) == ".pvd" ? pvdSteps(path, text) : jsonSteps(path, text);
+  checkSteps(path, steps);
+  return steps;
+}
+
+mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& options,
+                                  const ReadStepFile& readStep) {
+  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  ReadOptions one = options;
+  one.step.reset();
+  if (options.step) {  // that step's file alone (a later step than the last: the last, as a field)
+    const uint64_t k = std::min<uint64_t>(*options.step, steps.size() - 1);
+    checkSameSize(path, steps, k, options);
+    mesh::UnstructuredMesh m = readStep(steps[k].file, one);
+    for (const mesh::Field& f : m.fields) checkOneStep(path, k, steps[k], f.name, f.numSteps());
+    for (const mesh::CellField& f : m.cellFields)
+      checkOneStep(path, k, steps[k], f.name, f.steps.size());
+    m.timeValues = {steps[k].time};
+    return m;
+  }
+  mesh::UnstructuredMesh m = readStep(steps[0].file, one);
+  for (const mesh::Field& f : m.fields) checkOneStep(path, 0, steps[0], f.name, f.numSteps());
+  for (const mesh::CellField& f : m.cellFields)
+    checkOneStep(path, 0, steps[0], f.name, f.steps.size());
+  const bool byArray = readsByArray(steps[0].file) && m.cellFields.empty();
+  for (uint64_t k = 1; k < steps.size(); ++k) {
+    if (!byArray) {
+      appendStep(path, k, steps[k], m, readStep(steps[k].file, one));
+      continue;
+    }
+    checkSameSize(path, steps, k, options);
+    for (mesh::Field& f : m.fields)
+      f.steps.push_back(readFieldStep(steps[k].file, f.name, 0, one, m.pointOrigin));
+  }
+  m.timeValues.clear();
+  for (const SeriesStep& s : steps) m.timeValues.push_back(s.time);
+  return m;
+}
+
+std::vector<FieldStepCount> seriesFieldSteps(const std::string& path, const ReadOptions& options) {
+  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  // Before anything renders from the listing (a stream reads step k only when its frame comes):
+  // every step's file is there and holds the same mesh, by its headers.
+  if (readsByArray(steps[0].file)) {
+    const DeclaredSize first = declaredSize(steps[0].file, options);
+    for (uint64_t k = 1; k < steps.size(); ++k) checkSameSize(path, steps, k, options, first);
+  }
+  std::vector<FieldStepCount> fields = listFieldSteps(steps[0].file, options);
+  for (FieldStepCount& f : fields) {
+    checkOneStep(path, 0, steps[0], f.name, f.steps);
+    f.steps = steps.size();
+  }
+  return fields;
+}
+
+std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
+                                   const ReadOptions& options, std::span<const uint32_t> pointMap) {
+  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  if (step >= steps.size())
+    throw FileError(path, "field '", field, "' has ", steps.size(), " time steps (0 .. ",
+                    steps.size() - 1, "), not step ", step);
+  checkSameSize(path, steps, step, options);
+  return readFieldStep(steps[step].file, field, 0, options, pointMap);
+}
+
+}  // namespace sm::io
