@@ -182,12 +182,13 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
   for (const mesh::CellField& f : m.cellFields)
     checkOneStep(path, 0, steps[0], f.name, f.steps.size());
   const bool byArray = readsByArray(steps[0].file) && m.cellFields.empty();
+  const DeclaredSize first = byArray ? declaredSize(steps[0].file, options) : DeclaredSize{};
   for (uint64_t k = 1; k < steps.size(); ++k) {
     if (!byArray) {
       appendStep(path, k, steps[k], m, readStep(steps[k].file, one));
       continue;
     }
-    checkSameSize(path, steps, k, options);
+    checkSameSize(path, steps, k, options, first);
     for (mesh::Field& f : m.fields)
       f.steps.push_back(readFieldStep(steps[k].file, f.name, 0, one, m.pointOrigin));
   }
