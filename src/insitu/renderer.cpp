@@ -124,9 +124,9 @@ void Renderer::Impl::setCellField(const std::string& name, std::span<const float
                              "wedges and hexahedra given to setMesh)"));
   });
   if (!group.same(sm::hashBytes(name.data(), name.size())))
-    throw Error(sm::concat("setCellField '", name,
-                           "': the field name differs between ranks; every rank must set the "
-                           "same cell field in the same call"));
+    throw Error(
+        "setCellField: the field name differs between ranks; every rank must set the same cell "
+        "field in the same call");
   std::vector<float> atVertices;
   group.runOrAbort([&] { atVertices = cellFields.toPoints(values, group); });
   group.agree([&] { fields.set(name, atVertices); });

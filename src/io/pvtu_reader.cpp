@@ -1,6 +1,8 @@
 // .pvtu reader: each <Piece Source="..."> is a .vtu read on its own, its cells given the piece's
 // index as cluster id; the pieces are then welded into one mesh (weld.h).
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 
@@ -54,34 +56,50 @@ int countPvtuPieces(const std::string& path) {
 
 namespace {
 
-// NumberOfPoints and NumberOfCells of the <Piece> elements in the first bytes of a .vtu: the XML
-// header precedes appended data, so a rank can size a piece without reading it.
-DeclaredSize declaredVtuSize(const std::string& file, size_t prefix = 1 << 12) {
-  const std::string head = FileBytes::readPrefix(file, prefix);
-  checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
-  DeclaredSize size;
-  bool found = false;
-  auto number = [&](size_t at, size_t close, const char* key) -> uint64_t {
-    const std::string attr = std::string(key) + "=\"";
-    size_t a = head.find(attr, at);
-    if (a == std::string::npos || a > close) return 0;
-    const char* first = head.c_str() + a + attr.size();
-    char* end = nullptr;
-    unsigned long long n = std::strtoull(first, &end, 10);
-    if (end == first) throw FileError(file, key, " is not a number");
+// The unsigned number in attribute `key` of one tag's text (`<Piece NumberOfPoints="8" ...`).
+uint64_t tagNumber(const std::string& file, std::string_view tag, std::string_view key) {
+  for (size_t a = tag.find(key); a != std::string_view::npos; a = tag.find(key, a + 1)) {
+    const size_t open = a + key.size();
+    if (!isspace(static_cast<unsigned char>(tag[a - 1])) || tag.substr(open, 2) != "=\"") continue;
+    const char* first = tag.data() + open + 2;
+    uint64_t n = 0;
+    auto [end, ec] = std::from_chars(first, tag.data() + tag.size(), n);
+    if (ec != std::errc() || *end != '"')
+      throw FileError(file, "<Piece> attribute ", key, " is not a number");
     return n;
-  };
-  for (size_t at = head.find("<Piece"); at != std::string::npos; at = head.find("<Piece", at + 6)) {
-    const size_t close = head.find('>', at);
-    if (head.find("NumberOfCells=\"", at) > close) continue;
-    size.cells += number(at, close, "NumberOfCells");
-    size.points += number(at, close, "NumberOfPoints");
-    found = true;
   }
-  // A series checks every step's header: 4 KiB hold the <Piece> tags of nearly every file.
-  if (!found && prefix < (1 << 16) && head.size() == prefix) return declaredVtuSize(file, 1 << 16);
-  if (!found) throw FileError(file, "no <Piece NumberOfCells=...> in its header");
-  return size;
+  throw FileError(file, "a <Piece> has no ", key);
+}
+
+// NumberOfPoints and NumberOfCells of a .vtu, summed over its <Piece>s, from the start of the file
+// only: the XML header precedes appended data, so a piece is sized without being read. The prefix
+// read doubles until the header is complete (appended data or the grid's end seen, no tag cut
+// off), so long field data before the <Piece> or an inline first piece only cost more reading.
+DeclaredSize declaredVtuSize(const std::string& file) {
+  for (size_t prefix = size_t(1) << 12;; prefix *= 2) {
+    const std::string head = FileBytes::readPrefix(file, prefix);
+    checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
+    const bool whole = head.size() < prefix;
+    const size_t end = std::min(head.find("<AppendedData"), head.find("</UnstructuredGrid"));
+    DeclaredSize size;
+    bool found = false, cut = false;
+    for (size_t at = head.find("<Piece"); at < end; at = head.find("<Piece", at + 6)) {
+      const size_t close = head.find('>', at);
+      if (close == std::string::npos) {
+        cut = true;
+        break;
+      }
+      const std::string_view tag(head.data() + at, close - at);
+      size.points += tagNumber(file, tag, "NumberOfPoints");
+      size.cells += tagNumber(file, tag, "NumberOfCells");
+      found = true;
+    }
+    if (!cut && (end != std::string::npos || whole)) {
+      if (!found) throw FileError(file, "no <Piece NumberOfCells=...> in its header");
+      return size;
+    }
+    if (whole) throw FileError(file, "its header ends inside a <Piece> tag");
+  }
 }
 
 }  // namespace
@@ -93,16 +111,13 @@ std::vector<uint64_t> pvtuPieceCellCounts(const std::string& path) {
   return counts;
 }
 
-DeclaredSize declaredSize(const std::string& path, const ReadOptions& options) {
-  if (fileExtension(path) == ".vtu") return declaredVtuSize(path);
+std::vector<DeclaredSize> declaredSizes(const std::string& path, const ReadOptions& options) {
+  if (fileExtension(path) == ".vtu") return {declaredVtuSize(path)};
   const std::vector<std::string> files = pvtuPieceFiles(path);
-  DeclaredSize total;
-  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
-    const DeclaredSize piece = declaredVtuSize(files[i]);
-    total.points += piece.points;
-    total.cells += piece.cells;
-  }
-  return total;
+  std::vector<DeclaredSize> sizes;
+  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
+    sizes.push_back(declaredVtuSize(files[i]));
+  return sizes;
 }
 
 mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& options,

@@ -27,13 +27,13 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
 int countPvtuPieces(const std::string& path);
 // Cells each piece of a .pvtu declares in its header.
 std::vector<uint64_t> pvtuPieceCellCounts(const std::string& path);
-// Points and cells a .vtu, or the pieces of a .pvtu in options.pieces, declare in their headers
+// Points and cells a .vtu, or each piece of a .pvtu in options.pieces, declare in their headers
 // (nothing else is read).
 struct DeclaredSize {
   uint64_t points = 0, cells = 0;
   bool operator==(const DeclaredSize&) const = default;
 };
-DeclaredSize declaredSize(const std::string& path, const ReadOptions& options);
+std::vector<DeclaredSize> declaredSizes(const std::string& path, const ReadOptions& options);
 // The piece files a .pvtu names (paths resolved against its folder).
 std::vector<std::string> pvtuPieceFiles(const std::string& path);
 std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open);

@@ -1,6 +1,8 @@
 #include "io/series.h"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
@@ -32,9 +34,12 @@ std::vector<SeriesStep> pvdSteps(const std::string& path, const std::string& tex
     if (file.empty()) throw FileError(path, "data set ", steps.size(), " has no file attribute");
     SeriesStep s{joinPath(directoryOf(path), file), double(steps.size())};
     if (pugi::xml_attribute t = set.attribute("timestep")) {
-      char* end = nullptr;
-      s.time = std::strtod(t.value(), &end);
-      if (end == t.value() || *end != '\0')
+      // The whole value, spaces around it aside, in decimal or exponent form (no hex, no units).
+      std::string_view v = t.value();
+      while (!v.empty() && std::isspace(static_cast<unsigned char>(v.front()))) v.remove_prefix(1);
+      while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.remove_suffix(1);
+      auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), s.time);
+      if (v.empty() || ec != std::errc() || end != v.data() + v.size())
         throw FileError(path, "data set '", file, "' has timestep \"", t.value(),
                         "\", not a number");
     }
@@ -99,28 +104,67 @@ std::string stepName(uint64_t k, const SeriesStep& s) {
   return concat("step ", k, " ('", s.file, "')");
 }
 
-// Step k's file must hold the mesh of step 0 (sizes from the headers; the geometry is not read).
-void checkSameSize(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
-                   const ReadOptions& options, const DeclaredSize& first) {
-  const DeclaredSize mine = declaredSize(steps[k].file, options);
-  if (mine == first) return;
-  throw FileError(path, stepName(k, steps[k]), " has ", mine.points, " points and ", mine.cells,
-                  " cells, step 0 ('", steps[0].file, "') ", first.points, " and ", first.cells,
-                  ": every step of a series must be the same mesh");
-}
-
-void checkSameSize(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
-                   const ReadOptions& options) {
-  if (k > 0 && readsByArray(steps[k].file))
-    checkSameSize(path, steps, k, options, declaredSize(steps[0].file, options));
-}
-
 // A file of a series holds one step of each field.
 void checkOneStep(const std::string& path, uint64_t k, const SeriesStep& s,
                   const std::string& field, uint64_t steps) {
   if (steps > 1)
     throw FileError(path, stepName(k, s), " holds field '", field, "' with ", steps,
                     " time steps; in a series each file holds one step");
+}
+
+DeclaredSize total(const std::vector<DeclaredSize>& pieces) {
+  DeclaredSize t;
+  for (const DeclaredSize& p : pieces) t.points += p.points, t.cells += p.cells;
+  return t;
+}
+
+// Step k's file holds the mesh of step 0, by the sizes its headers declare for each piece read
+// (the geometry is not read): pieces of the same sizes in the same order.
+void checkSameSizes(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+                    const ReadOptions& options, const std::vector<DeclaredSize>& first) {
+  const std::vector<DeclaredSize> mine = declaredSizes(steps[k].file, options);
+  if (mine == first) return;
+  const DeclaredSize a = total(mine), b = total(first);
+  if (a != b || mine.size() != first.size())
+    throw FileError(path, stepName(k, steps[k]), " has ", a.points, " points and ", a.cells,
+                    " cells, step 0 ('", steps[0].file, "') ", b.points, " and ", b.cells,
+                    ": every step of a series must be the same mesh");
+  size_t i = 0;
+  while (mine[i] == first[i]) ++i;
+  std::vector<int> chosen = options.pieces;
+  std::sort(chosen.begin(), chosen.end());
+  throw FileError(path, stepName(k, steps[k]), " piece ", chosen.empty() ? int(i) : chosen[i],
+                  " has ", mine[i].points, " points and ", mine[i].cells, " cells, that of step 0 ",
+                  first[i].points, " and ", first[i].cells,
+                  ": every step of a series must be the same mesh, its pieces in the same order");
+}
+
+// What every later step of a .vtu or .pvtu series is checked against.
+struct FirstStep {
+  std::vector<DeclaredSize> sizes;
+  std::vector<FieldStepCount> fields;
+};
+
+FirstStep firstStep(const std::string& path, const std::vector<SeriesStep>& steps,
+                    const ReadOptions& options) {
+  FirstStep f{declaredSizes(steps[0].file, options), listFieldSteps(steps[0].file, options)};
+  for (const FieldStepCount& c : f.fields) checkOneStep(path, 0, steps[0], c.name, c.steps);
+  return f;
+}
+
+// Step k of a .vtu or .pvtu series, from its headers: step 0's mesh, and each of step 0's fields
+// with one step.
+void checkStep(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+               const ReadOptions& options, const FirstStep& first) {
+  checkSameSizes(path, steps, k, options, first.sizes);
+  const std::vector<FieldStepCount> fields = listFieldSteps(steps[k].file, options);
+  for (const FieldStepCount& f : first.fields) {
+    auto it = std::find_if(fields.begin(), fields.end(),
+                           [&](const FieldStepCount& c) { return c.name == f.name; });
+    if (it == fields.end())
+      throw FileError(path, stepName(k, steps[k]), " has no field '", f.name, "'");
+    checkOneStep(path, k, steps[k], f.name, it->steps);
+  }
 }
 
 void appendStep(const std::string& path, uint64_t k, const SeriesStep& s, mesh::UnstructuredMesh& m,
@@ -169,7 +213,8 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
   one.step.reset();
   if (options.step) {  // that step's file alone (a later step than the last: the last, as a field)
     const uint64_t k = std::min<uint64_t>(*options.step, steps.size() - 1);
-    checkSameSize(path, steps, k, options);
+    if (k > 0 && readsByArray(steps[k].file))
+      checkSameSizes(path, steps, k, options, declaredSizes(steps[0].file, options));
     mesh::UnstructuredMesh m = readStep(steps[k].file, one);
     for (const mesh::Field& f : m.fields) checkOneStep(path, k, steps[k], f.name, f.numSteps());
     for (const mesh::CellField& f : m.cellFields)
@@ -182,13 +227,13 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
   for (const mesh::CellField& f : m.cellFields)
     checkOneStep(path, 0, steps[0], f.name, f.steps.size());
   const bool byArray = readsByArray(steps[0].file) && m.cellFields.empty();
-  const DeclaredSize first = byArray ? declaredSize(steps[0].file, options) : DeclaredSize{};
+  const FirstStep first = byArray ? firstStep(path, steps, one) : FirstStep{};
   for (uint64_t k = 1; k < steps.size(); ++k) {
     if (!byArray) {
       appendStep(path, k, steps[k], m, readStep(steps[k].file, one));
       continue;
     }
-    checkSameSize(path, steps, k, options, first);
+    checkStep(path, steps, k, one, first);
     for (mesh::Field& f : m.fields)
       f.steps.push_back(readFieldStep(steps[k].file, f.name, 0, one, m.pointOrigin));
   }
@@ -199,18 +244,20 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
 
 std::vector<FieldStepCount> seriesFieldSteps(const std::string& path, const ReadOptions& options) {
   const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  if (!readsByArray(steps[0].file)) {  // read whole: listing step 0 reads it all
+    std::vector<FieldStepCount> fields = listFieldSteps(steps[0].file, options);
+    for (FieldStepCount& f : fields) {
+      checkOneStep(path, 0, steps[0], f.name, f.steps);
+      f.steps = steps.size();
+    }
+    return fields;
+  }
   // Before anything renders from the listing (a stream reads step k only when its frame comes):
-  // every step's file is there and holds the same mesh, by its headers.
-  if (readsByArray(steps[0].file)) {
-    const DeclaredSize first = declaredSize(steps[0].file, options);
-    for (uint64_t k = 1; k < steps.size(); ++k) checkSameSize(path, steps, k, options, first);
-  }
-  std::vector<FieldStepCount> fields = listFieldSteps(steps[0].file, options);
-  for (FieldStepCount& f : fields) {
-    checkOneStep(path, 0, steps[0], f.name, f.steps);
-    f.steps = steps.size();
-  }
-  return fields;
+  // every step's file is there, holds step 0's mesh and fields, one step each, by its headers.
+  FirstStep first = firstStep(path, steps, options);
+  for (uint64_t k = 1; k < steps.size(); ++k) checkStep(path, steps, k, options, first);
+  for (FieldStepCount& f : first.fields) f.steps = steps.size();
+  return first.fields;
 }
 
 std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
@@ -219,7 +266,9 @@ std::vector<float> seriesFieldStep(const std::string& path, const std::string& f
   if (step >= steps.size())
     throw FileError(path, "field '", field, "' has ", steps.size(), " time steps (0 .. ",
                     steps.size() - 1, "), not step ", step);
-  checkSameSize(path, steps, step, options);
+  // Checked when the series was listed; a file replaced since then is caught by its sizes.
+  if (step > 0 && readsByArray(steps[step].file))
+    checkSameSizes(path, steps, step, options, declaredSizes(steps[0].file, options));
   return readFieldStep(steps[step].file, field, 0, options, pointMap);
 }
 

@@ -161,6 +161,39 @@ TEST(Series, CellDataStepsAverageOntoPoints) {
   EXPECT_EQ(cells.cellFields[0].steps[1][0], (std::vector<float>{2, 6}));
 }
 
+// A header whose <Piece> tag starts `at` bytes into the file (ascii field data before it), then
+// twoTets' piece: steps whose headers outgrow the first bytes a size check reads.
+std::string paddedTwoTets(size_t at) {
+  std::string text = twoTets(1, 3);
+  const size_t piece = text.find("<Piece");
+  std::string pad =
+      "<FieldData><DataArray type=\"Float64\" Name=\"note\" NumberOfTuples=\"1\" "
+      "format=\"ascii\">7";
+  const std::string close = "</DataArray></FieldData>";
+  pad += std::string(at - piece - pad.size() - close.size(), ' ') + close;
+  text.insert(piece, pad);
+  return text;
+}
+
+TEST(Series, LongHeadersAreSizedWhole) {
+  const std::string dir = sm::test::outputDir("Series.LongHeaders");
+  // The tag cut by the first 4 KiB read, then field data longer than 64 KiB.
+  for (size_t at : {size_t(4096 - 20), size_t(4096 - 40), size_t(100000)}) {
+    writeText(dir + "/a.vtu", paddedTwoTets(at));
+    writeText(dir + "/b.vtu", paddedTwoTets(at + 13));  // cut elsewhere
+    writeText(dir + "/c.pvd",
+              "<VTKFile type=\"Collection\"><Collection><DataSet file=\"a.vtu\"/>"
+              "<DataSet file=\"b.vtu\"/></Collection></VTKFile>");
+    ReadOptions o;
+    o.fields = {"p"};
+    EXPECT_EQ(readMesh(dir + "/a.vtu", o).numCells(), 2u) << at;
+    const mesh::UnstructuredMesh m = readMesh(dir + "/c.pvd", o);
+    EXPECT_EQ(m.numCells(), 2u) << at;
+    EXPECT_EQ(m.fields.at(0).numSteps(), 2u) << at;
+    EXPECT_EQ(listFieldSteps(dir + "/c.pvd", o).at(0).steps, 2u) << at;
+  }
+}
+
 TEST(Series, BadIndexesAndStepsAreNamed) {
   const std::string dir = sm::test::outputDir("Series.Errors");
   writeText(dir + "/a.vtu", twoTets(1, 3));
@@ -184,6 +217,8 @@ TEST(Series, BadIndexesAndStepsAreNamed) {
               "nofile.pvd: data set 0 has no file attribute");
   expectError("time.pvd", head + "<DataSet timestep=\"soon\" file=\"a.vtu\"/>" + tail,
               "time.pvd: data set 'a.vtu' has timestep \"soon\", not a number");
+  expectError("hex.pvd", head + "<DataSet timestep=\"0x10\" file=\"a.vtu\"/>" + tail,
+              "hex.pvd: data set 'a.vtu' has timestep \"0x10\", not a number");
   expectError("inf.pvd", head + "<DataSet timestep=\"inf\" file=\"a.vtu\"/>" + tail,
               "has time inf, not a finite number");
   expectError("parts.pvd",
