@@ -47,21 +47,26 @@ std::vector<uint32_t> boundaryPoints(const mesh::UnstructuredMesh& m) {
   return points;
 }
 
-// For each of `border`, how many of the rank's points (any, used or not) at bitwise the same
-// position have a lower id: the weld joins a piece's k-th copy of a position with the k-th copy
-// of every other piece, and a rank's own weld numbers its copies in that order.
-std::vector<uint64_t> occurrences(const mesh::UnstructuredMesh& m,
+// A point's name before its copy number: its coordinates, bit for bit, or its id.
+Position nameOf(const mesh::UnstructuredMesh& m, std::span<const uint64_t> ids, uint32_t p) {
+  return ids.empty() ? positionOf(m.points[p]) : Position{ids[p], 0, 0};
+}
+
+// For each of `border`, how many of the rank's points (any, used or not) of the same name have a
+// lower id: the weld joins a piece's k-th copy of a position with the k-th copy of every other
+// piece, and a rank's own weld numbers its copies in that order.
+std::vector<uint64_t> occurrences(const mesh::UnstructuredMesh& m, std::span<const uint64_t> ids,
                                   const std::vector<uint32_t>& border) {
   std::vector<Position> positions;
   positions.reserve(border.size());
-  for (uint32_t p : border) positions.push_back(positionOf(m.points[p]));
+  for (uint32_t p : border) positions.push_back(nameOf(m, ids, p));
   std::sort(positions.begin(), positions.end());
   positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
   std::vector<uint64_t> seen(positions.size(), 0), occ;
   occ.reserve(border.size());
   size_t next = 0;  // border is in increasing order
   for (uint32_t p = 0; p < m.numPoints() && next < border.size(); ++p) {
-    const Position key = positionOf(m.points[p]);
+    const Position key = nameOf(m, ids, p);
     auto it = std::lower_bound(positions.begin(), positions.end(), key);
     if (it == positions.end() || *it != key) continue;
     const uint64_t k = seen[size_t(it - positions.begin())]++;
@@ -80,19 +85,23 @@ int meetingRank(const Key& k, int ranks) {
 
 }  // namespace
 
-BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll)
+BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll,
+                               std::span<const uint64_t> pointIds)
     : numPoints_(m.numPoints()) {
+  SM_CHECK(pointIds.empty() || pointIds.size() == m.numPoints());
   const int n = coll.size();
   const std::vector<uint32_t> border = boundaryPoints(m);
-  const std::vector<uint64_t> occ = occurrences(m, border);
-  // Offers: (x, y, z, copy) per boundary point, to the point's meeting rank.
+  const std::vector<uint64_t> occ = occurrences(m, pointIds, border);
+  // Offers: the name's words (bit patterns carried in doubles, never computed with) and the copy
+  // number, per boundary point, to the point's meeting rank.
   std::vector<std::vector<double>> offers(n);
   std::vector<std::vector<uint32_t>> offered(n);
   for (size_t i = 0; i < border.size(); ++i) {
-    const glm::dvec3& p = m.points[border[i]];
-    const Position pos = positionOf(p);
+    const Position pos = nameOf(m, pointIds, border[i]);
     const int to = meetingRank({pos[0], pos[1], pos[2], occ[i]}, n);
-    offers[to].insert(offers[to].end(), {p.x, p.y, p.z, double(occ[i])});
+    offers[to].insert(offers[to].end(),
+                      {std::bit_cast<double>(pos[0]), std::bit_cast<double>(pos[1]),
+                       std::bit_cast<double>(pos[2]), double(occ[i])});
     offered[to].push_back(border[i]);
   }
   std::vector<std::vector<double>> got = coll.exchange(offers);
@@ -105,7 +114,7 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& co
   for (int s = 0; s < n; ++s) {
     for (size_t i = 0; i < offeredBy[s]; ++i) {
       const double* e = got[s].data() + 4 * i;
-      const Position pos = positionOf({e[0], e[1], e[2]});
+      const Position pos = positionOf({e[0], e[1], e[2]});  // the words sent, as they were
       entries.push_back({{pos[0], pos[1], pos[2], uint64_t(e[3])}, s, uint32_t(i)});
     }
     std::vector<double>().swap(got[s]);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "border/rank_exchange.h"
@@ -21,7 +22,12 @@ class BorderExchange {
   // the meeting rank tells each sender which of its points another rank has too. Traffic is
   // proportional to the boundary, whatever the shape of the parts. Throws sm::Error naming the
   // mesh for faces shared by more than two elements (as preparation would).
-  BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll);
+  //
+  // `pointIds`, when not empty (one per point, the same on every rank for one point: a solver's
+  // global vertex numbers), name the points instead of their coordinates: two points at one
+  // position with different ids (a baffle's sides, each on its own rank) stay apart.
+  BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll,
+                 std::span<const uint64_t> pointIds = {});
 
   // Collective. Each of `columns` holds one value per point of this rank. Replaces each shared
   // point's values by the sums of the values of every rank's copy of the point, added in rank

@@ -1,10 +1,13 @@
 #include "cell_fields.h"
 
+#include <utility>
+
 #include "common/check.h"
 
 namespace sm::insitu {
 
-CellFields::CellFields(const mesh::UnstructuredMesh& input) : numCells_(input.numCells()) {
+CellFields::CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds)
+    : globalIds_(std::move(globalIds)), numCells_(input.numCells()) {
   mesh_.source = "setCellField";
   mesh_.points = input.points;
   mesh_.cells = input.cells;
@@ -14,7 +17,7 @@ void CellFields::findSharedPoints(border::RankExchange& ranks) {
   found_ = true;
   uses_ = mesh::cellUsesAtPoints(mesh_);
   if (ranks.size() == 1) return;
-  border_ = std::make_unique<border::BorderExchange>(mesh_, ranks);
+  border_ = std::make_unique<border::BorderExchange>(mesh_, ranks, globalIds_);
   std::vector<std::vector<double>> columns{std::move(uses_)};
   border_->addOtherRanks(columns, ranks);
   uses_ = std::move(columns[0]);

@@ -20,7 +20,8 @@ class CellFields {
   // Keeps the points and cells of this rank's mesh as setMesh built it, before preparation takes
   // them (about 4 bytes per element vertex and 24 per vertex): the values of a later call are
   // summed at the caller's vertices.
-  explicit CellFields(const mesh::UnstructuredMesh& input);
+  // globalIds: MeshView::globalIds (empty: shared vertices are found by their coordinates).
+  CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds);
 
   uint64_t numCells() const { return numCells_; }
   // Collective: every rank calls it, with its own cells' values in setMesh's order (tetrahedra,
@@ -34,6 +35,7 @@ class CellFields {
   void findSharedPoints(border::RankExchange& ranks);
 
   mesh::UnstructuredMesh mesh_;  // points and cells only
+  std::vector<uint64_t> globalIds_;
   uint64_t numCells_ = 0;
   bool found_ = false;  // findSharedPoints has run (collective: a flag, not a size test)
   std::unique_ptr<border::BorderExchange> border_;  // null on one rank: nothing is shared

@@ -71,4 +71,19 @@ mesh::UnstructuredMesh meshFromView(const MeshView& view) {
   return builder.finish();
 }
 
+std::vector<uint64_t> globalIdsFromView(const MeshView& view) {
+  const uint64_t vertices = view.points.size() / 3;
+  if (view.globalIds.empty()) return {};
+  if (view.globalIds.size() != vertices)
+    throw Error("setMesh: globalIds holds ", view.globalIds.size(), " ids for ", vertices,
+                " vertices (one per vertex, or none)");
+  std::vector<uint64_t> ids(vertices);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int64_t id = view.globalIds[i];
+    if (id < 0) throw Error("setMesh: globalIds[", i, "] is ", id, "; global ids are not negative");
+    ids[i] = uint64_t(id);
+  }
+  return ids;
+}
+
 }  // namespace sm::insitu

@@ -3,6 +3,9 @@
 // mesh::MeshBuilder, the one place where cells enter a mesh (orientation, repeated vertices).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "mesh/unstructured_mesh.h"
 #include "shellmarch/insitu.h"
 
@@ -10,5 +13,8 @@ namespace sm::insitu {
 
 // This rank's mesh as a copy; throws sm::Error on bad input.
 mesh::UnstructuredMesh meshFromView(const shellmarch::insitu::MeshView& view);
+// MeshView::globalIds as a copy (empty when not given); throws sm::Error for a wrong count or a
+// negative id.
+std::vector<uint64_t> globalIdsFromView(const shellmarch::insitu::MeshView& view);
 
 }  // namespace sm::insitu

@@ -42,7 +42,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   void setCellField(const std::string& name, std::span<const float> values);
   Image render(const RenderSettings& settings);
   MeshFrame agreeOnFrame(const sm::mesh::UnstructuredMesh& m);
-  void upload(sm::mesh::UnstructuredMesh& m);
+  void upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds);
   void ensureRenderer(int width, int height);
   void releaseMesh();
 
@@ -87,9 +87,9 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
   return f;
 }
 
-void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m) {
+void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds) {
   const uint64_t inputVertices = m.numPoints();  // preparation takes the points out of m
-  cellFields = sm::insitu::CellFields(m);
+  cellFields = sm::insitu::CellFields(m, std::move(globalIds));
   sm::prep::PreparedRank prepared =
       sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
           .rank;
@@ -105,11 +105,15 @@ void Renderer::Impl::setMesh(const MeshView& view) {
   releaseMesh();
   sm::Timer timer;
   sm::mesh::UnstructuredMesh m;
-  group.agree([&] { m = sm::insitu::meshFromView(view); });
+  std::vector<uint64_t> globalIds;
+  group.agree([&] {
+    m = sm::insitu::meshFromView(view);
+    globalIds = sm::insitu::globalIdsFromView(view);
+  });
   frame = agreeOnFrame(m);
   if (frame.elements == 0)
     throw Error("setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
-  group.agree([&] { upload(m); });
+  group.agree([&] { upload(m, std::move(globalIds)); });
   prepareSeconds = timer.seconds();
 }
 

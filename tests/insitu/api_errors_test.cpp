@@ -121,6 +121,15 @@ TEST_F(InsituErrors, CellFields) {
               "the pyramids, wedges and hexahedra given to setMesh)");
   expectError([&] { vis_->setCellField("", std::vector<float>(2)); },
               "setCellField: the field needs a name");
+  const std::vector<int64_t> fourIds = {0, 1, 2, 3}, negative = {0, 1, -2, 3, 4};
+  api::MeshView v = twoTets(kPoints, kTets);
+  v.globalIds = fourIds;
+  expectError([&] { vis_->setMesh(v); },
+              "setMesh: globalIds holds 4 ids for 5 vertices (one per vertex, or none)");
+  v.globalIds = negative;
+  expectError([&] { vis_->setMesh(v); },
+              "setMesh: globalIds[2] is -2; global ids are not negative");
+  vis_->setMesh(twoTets(kPoints, kTets));
   const std::string name = "p";  // a literal assigned to s.field trips GCC 12's -Wrestrict
   vis_->setCellField(name, std::vector<float>{1.0f, 3.0f});
   api::RenderSettings s = small();

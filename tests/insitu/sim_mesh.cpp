@@ -52,6 +52,7 @@ SimMesh subset(const mesh::UnstructuredMesh& m, const std::function<bool(int, si
           id = int64_t(out.vertices());
           const glm::dvec3& p = m.points[m.cells[t][e + k]];
           out.xyz.insert(out.xyz.end(), {p.x, p.y, p.z});
+          out.ids.push_back(int64_t(m.cells[t][e + k]));
         }
         out.cells[t].push_back(id);
       }
@@ -62,13 +63,49 @@ SimMesh subset(const mesh::UnstructuredMesh& m, const std::function<bool(int, si
 
 }  // namespace
 
-SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
+namespace {
+
+double centroidX(const mesh::UnstructuredMesh& m, int t, size_t e) {
+  const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+  double x = 0;
+  for (uint32_t k = 0; k < nv; ++k) x += m.points[m.cells[t][e * nv + k]].x / nv;
+  return x;
+}
+
+}  // namespace
+
+SimMesh slabWithIds(const mesh::UnstructuredMesh& m, double lo, double hi) {
   return subset(m, [&](int t, size_t e) {
-    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
-    double x = 0;
-    for (uint32_t k = 0; k < nv; ++k) x += m.points[m.cells[t][e * nv + k]].x / nv;
+    const double x = centroidX(m, t, e);
     return x >= lo && x < hi;
   });
+}
+
+SimMesh slab(const mesh::UnstructuredMesh& m, double lo, double hi) {
+  SimMesh s = slabWithIds(m, lo, hi);
+  s.ids.clear();
+  return s;
+}
+
+mesh::UnstructuredMesh baffled(const mesh::UnstructuredMesh& m, double at) {
+  mesh::UnstructuredMesh out = m;
+  std::vector<int64_t> copyOf(m.numPoints(), -1);
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    for (size_t e = 0; e * nv < m.cells[t].size(); ++e) {
+      if (centroidX(m, t, e) < at) continue;
+      for (uint32_t k = 0; k < nv; ++k) {
+        uint32_t& v = out.cells[t][e * nv + k];
+        if (m.points[v].x != at) continue;
+        if (copyOf[v] < 0) {
+          copyOf[v] = int64_t(out.points.size());
+          out.points.push_back(m.points[v]);
+        }
+        v = uint32_t(copyOf[v]);
+      }
+    }
+  }
+  return out;
 }
 
 SimMesh dealt(const mesh::UnstructuredMesh& m, int part, int parts) {

@@ -101,6 +101,11 @@ struct MeshView {
   IndexSpan pyramids;              // 5
   IndexSpan wedges;                // 6
   IndexSpan hexahedra;             // 8
+  // Optional: the simulation's global number of each vertex (one per vertex, >= 0, the same on
+  // every rank that holds the vertex). setCellField then finds vertices shared between ranks by
+  // these numbers instead of by their coordinates, which keeps apart the two sides of a baffle
+  // (coincident vertices that are not one) when each side is on its own rank.
+  IndexSpan globalIds;
 };
 
 struct Camera {
