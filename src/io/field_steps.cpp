@@ -189,7 +189,7 @@ std::vector<float> mapPoints(const std::string& path, std::vector<float> values,
 std::vector<FieldStepCount> listFieldSteps(const std::string& path, const ReadOptions& options) {
   const std::string ext = fileExtension(path);
   if (ext == ".vtu") return vtuFieldSteps(path, options);
-  if (ext == ".pvtu") return pvtuFieldSteps(path, options);
+  if (isPieceIndex(path)) return pvtuFieldSteps(path, options);
   if (isSeries(path)) return seriesFieldSteps(path, options);
   ReadOptions o = options;
   o.step.reset();
@@ -203,7 +203,7 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
   std::vector<float> values;
   if (ext == ".vtu")
     values = vtuFieldStep(path, field, step, options.threads);
-  else if (ext == ".pvtu")
+  else if (isPieceIndex(path))
     values = pvtuFieldStep(path, field, step, options);
   else if (isSeries(path))
     return seriesFieldStep(path, field, step, options, pointMap);
@@ -215,9 +215,9 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
   if (isSeries(path)) return asksForCellData(readSeriesIndex(path).at(0).file, options);
   const std::string ext = fileExtension(path);
-  if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && ext != ".pvtu"))
+  if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && !isPieceIndex(path)))
     return false;
-  const std::string file = ext == ".pvtu" ? pvtuPieceFiles(path).at(0) : path;
+  const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
   FileBytes bytes = FileBytes::open(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
   const std::vector<VtuPiece> pieces = vtuPieces(doc);

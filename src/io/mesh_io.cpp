@@ -16,13 +16,13 @@ enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid, Series };
 Format formatOf(const std::string& path) {
   const std::string ext = fileExtension(path);
   if (ext == ".vtu") return Format::Vtu;
-  if (ext == ".pvtu") return Format::Pvtu;
+  if (isPieceIndex(path)) return Format::Pvtu;
   if (ext == ".vtk") return Format::LegacyVtk;
   if (ext == ".ugrid") return Format::Ugrid;
   if (isSeries(path)) return Format::Series;
   throw Error(path, ": unknown mesh format '", ext,
-              "' (shellmarch reads .vtu, .pvtu, legacy .vtk and .ugrid files, and time series of "
-              "them as .pvd or .series files)");
+              "' (shellmarch reads .vtu, .pvtu, .vtm, legacy .vtk and .ugrid files, and time "
+              "series of them as .pvd or .series files)");
 }
 
 // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
@@ -142,7 +142,8 @@ std::string formatDescription(const std::string& path) {
     case Format::Vtu:
       return "VTK XML unstructured grid (.vtu)";
     case Format::Pvtu:
-      return "parallel VTK XML unstructured grid (.pvtu)";
+      return fileExtension(path) == ".vtm" ? "VTK XML multiblock (.vtm) of unstructured grids"
+                                           : "parallel VTK XML unstructured grid (.pvtu)";
     case Format::LegacyVtk:
       return "legacy VTK unstructured grid (.vtk)";
     case Format::Ugrid:

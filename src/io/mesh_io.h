@@ -2,6 +2,7 @@
 //   .vtu   VTK XML unstructured grid (ascii, inline base64, appended raw/base64, zlib)
 //   .pvtu  parallel VTK XML: one piece = one cluster; pieces of one read are welded (exactly
 //          coincident points merged) so that faces between clusters become interior
+//   .vtm   VTK XML multiblock: its unstructured-grid data sets are read as a .pvtu's pieces
 //   .vtk   legacy VTK UNSTRUCTURED_GRID, ascii or binary, versions 3 (CELLS/CELL_TYPES) and 5.1
 //          (OFFSETS/CONNECTIVITY)
 //   .ugrid FUN3D/AFLR3 (.ugrid ascii; .b8/.lb8 binary, .b8l/.lb8l 64-bit ints, ...), fields from

@@ -18,7 +18,49 @@ std::vector<std::string> pvtuPieceFiles(const std::string& path) {
   return pvtuPieceFiles(path, &FileBytes::open);
 }
 
+namespace {
+
+// The unstructured grids of a multiblock file (.vtm), in document order: each <DataSet> at any
+// depth of <Block>s and <Piece>s whose file is a .vtu, or the pieces of a .pvtu it names. Other
+// data sets (a solver's boundary patches as .vtp surfaces, images) hold no volume to render and
+// are left out; a <DataSet> with no file is an empty block.
+std::vector<std::string> vtmPieceFiles(const std::string& path, const OpenFile& open) {
+  FileBytes bytes = open(path);
+  VtuDocument doc(bytes, path, "vtkMultiBlockDataSet");
+  pugi::xml_node root = doc.root().child("vtkMultiBlockDataSet");
+  if (!root) throw FileError(path, "has no <vtkMultiBlockDataSet> element");
+  std::vector<std::string> files;
+  for (pugi::xpath_node set : root.select_nodes(".//DataSet")) {
+    const std::string file = set.node().attribute("file").value();
+    const std::string resolved = joinPath(directoryOf(path), file);
+    const std::string ext = fileExtension(file);
+    if (ext == ".vtu") {
+      files.push_back(resolved);
+    } else if (ext == ".pvtu") {
+      for (std::string& piece : pvtuPieceFiles(resolved, open)) files.push_back(std::move(piece));
+    } else if (ext == ".vtm") {
+      throw FileError(path, "names another multiblock file ('", file,
+                      "'); nest its blocks instead");
+    }
+  }
+  if (files.empty())
+    throw FileError(path, "holds no unstructured grid (.vtu or .pvtu data sets) to render");
+  return files;
+}
+
+}  // namespace
+
+bool isPieceIndex(const std::string& path) {
+  const std::string ext = fileExtension(path);
+  return ext == ".pvtu" || ext == ".vtm";
+}
+
 std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open) {
+  if (fileExtension(path) == ".vtm") {
+    std::vector<std::string> files = vtmPieceFiles(path, open);
+    if (files.size() > 0x7FFFFFFF) throw FileError(path, "names too many pieces");
+    return files;
+  }
   FileBytes bytes = open(path);
   VtuDocument doc(bytes, path, "PUnstructuredGrid");
   pugi::xml_node grid = doc.root().child("PUnstructuredGrid");

@@ -34,7 +34,10 @@ struct DeclaredSize {
   bool operator==(const DeclaredSize&) const = default;
 };
 std::vector<DeclaredSize> declaredSizes(const std::string& path, const ReadOptions& options);
-// The piece files a .pvtu names (paths resolved against its folder).
+// True for a file that names pieces read and welded together: a .pvtu, or a multiblock .vtm whose
+// unstructured-grid data sets are its pieces (one cluster each, in document order).
+bool isPieceIndex(const std::string& path);
+// The piece files a .pvtu (or .vtm) names (paths resolved against its folder).
 std::vector<std::string> pvtuPieceFiles(const std::string& path);
 std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open);
 // options.pieces checked against `count` and sorted; every piece when empty.

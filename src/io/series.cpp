@@ -97,7 +97,7 @@ void checkSteps(const std::string& path, std::vector<SeriesStep>& steps) {
 // Formats whose headers give the sizes and whose fields are read one array at a time.
 bool readsByArray(const std::string& file) {
   const std::string ext = fileExtension(file);
-  return ext == ".vtu" || ext == ".pvtu";
+  return ext == ".vtu" || isPieceIndex(file);
 }
 
 std::string stepName(uint64_t k, const SeriesStep& s) {

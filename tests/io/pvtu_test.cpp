@@ -123,6 +123,65 @@ TEST(PvtuReader, APieceThatIsItselfAPvtuIsNamed) {
   EXPECT_NE(msg.find("give it the .pvtu extension"), std::string::npos) << msg;
 }
 
+// A multiblock file (.vtm, as VTK's vtkXMLMultiBlockDataWriter and solvers write one) whose
+// unstructured grids are the pieces of a .pvtu: the same welded mesh, piece for piece; surfaces
+// and empty blocks are left out.
+TEST(MultiblockReader, UnstructuredBlocksArePieces) {
+  const std::string dir = sm::test::outputDir("MultiblockReader.Blocks");
+  writePvtu(dir + "/grid.pvtu", test::makeTestMesh(3, 2));
+  test::writeText(dir + "/grid.vtm",
+                  "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
+                  "<DataSet index=\"0\" file=\"grid/grid_0.vtu\"/>"
+                  "<Block index=\"1\" name=\"boundary\"><DataSet index=\"0\" file=\"wall.vtp\"/>"
+                  "<DataSet index=\"1\"/><Piece index=\"0\"><DataSet file=\"grid/grid_1.vtu\"/>"
+                  "</Piece></Block></vtkMultiBlockDataSet></VTKFile>");
+  const mesh::UnstructuredMesh pvtu = readMesh(dir + "/grid.pvtu");
+  const mesh::UnstructuredMesh vtm = readMesh(dir + "/grid.vtm");
+  EXPECT_EQ(vtm.points, pvtu.points);
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    EXPECT_EQ(vtm.cells[t], pvtu.cells[t]);
+    EXPECT_EQ(vtm.clusters[t], pvtu.clusters[t]);
+  }
+  ASSERT_EQ(vtm.fields.size(), pvtu.fields.size());
+  for (size_t f = 0; f < vtm.fields.size(); ++f)
+    EXPECT_EQ(vtm.fields[f].steps, pvtu.fields[f].steps);
+  EXPECT_EQ(countPieces(dir + "/grid.vtm"), 2);
+  EXPECT_TRUE(readsByPiece(dir + "/grid.vtm"));
+  EXPECT_EQ(pieceCellCounts(dir + "/grid.vtm"), pieceCellCounts(dir + "/grid.pvtu"));
+  EXPECT_EQ(formatDescription(dir + "/grid.vtm"),
+            "VTK XML multiblock (.vtm) of unstructured grids");
+  ReadOptions second;
+  second.pieces = {1};
+  EXPECT_EQ(readMesh(dir + "/grid.vtm", second).points,
+            readMesh(dir + "/grid.pvtu", second).points);
+  EXPECT_EQ(readFieldStep(dir + "/grid.vtm", "g", 1, {}, vtm.pointOrigin), pvtu.fields[1].steps[1]);
+
+  // A .pvtu named by a block gives its pieces; the same mesh again.
+  test::writeText(dir + "/nested.vtm",
+                  "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><Block>"
+                  "<DataSet file=\"grid.pvtu\"/></Block></vtkMultiBlockDataSet></VTKFile>");
+  EXPECT_EQ(readMesh(dir + "/nested.vtm").points, pvtu.points);
+
+  test::writeText(dir + "/surfaces.vtm",
+                  "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet>"
+                  "<DataSet file=\"wall.vtp\"/></vtkMultiBlockDataSet></VTKFile>");
+  EXPECT_NE(fileErrorOf([&] {
+              readMesh(dir + "/surfaces.vtm");
+            }).find("surfaces.vtm: holds no unstructured grid (.vtu or .pvtu data sets)"),
+            std::string::npos);
+  test::writeText(dir + "/self.vtm",
+                  "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet>"
+                  "<DataSet file=\"self.vtm\"/></vtkMultiBlockDataSet></VTKFile>");
+  EXPECT_NE(fileErrorOf([&] {
+              readMesh(dir + "/self.vtm");
+            }).find("self.vtm: names another multiblock file ('self.vtm')"),
+            std::string::npos);
+  test::writeText(dir + "/wrong.vtm", "<VTKFile type=\"PolyData\"/>");
+  EXPECT_NE(
+      fileErrorOf([&] { readMesh(dir + "/wrong.vtm"); }).find("expected 'vtkMultiBlockDataSet'"),
+      std::string::npos);
+}
+
 TEST(Weld, MergesAcrossPiecesOnlyAndOnlyBitwiseEqualPoints) {
   mesh::UnstructuredMesh a, b;
   a.points = {{0, 0, 0}, {0, 0, 0}, {1, 0, 0}};  // a duplicate inside one piece stays two points

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Files as a solver's VTK export lays them out, run by ctest with
+#   multiblock_test.sh SHELLMARCH WORKDIR
+# A multiblock .vtm whose unstructured blocks are a .pvtu's pieces (beside a boundary surface
+# that is left out) renders bit for bit as the .pvtu on 1 and 3 ranks; a .vtm.series of one .vtm
+# per step renders `--time all` bit for bit as the same steps in one .pvtu.
+set -euo pipefail
+sm=$1 work=$2
+mkdir -p "$work"
+cd "$work"
+rm -rf ./*
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
+fail() { echo "FAIL: $*"; exit 1; }
+
+view=(--field vortex --size 48x40 --view iso --range 0,1 --colormap viridis --early-termination 1)
+"$sm" generate --analytic cube-tets6 --cube-n 5 --clusters 3 --steps 3 --out steps.pvtu
+"$sm" generate --analytic cube-tets6 --cube-n 5 --clusters 3 --steps 3 --out run.pvd
+
+# One .vtm per step, its blocks the step's pieces (nested as ParaView nests them), plus a surface.
+blocks() {  # blocks FOLDER STEM
+  echo '<VTKFile type="vtkMultiBlockDataSet" version="1.0"><vtkMultiBlockDataSet>'
+  echo "<Block index=\"0\" name=\"internal\"><DataSet index=\"0\" file=\"$1/${2}_0.vtu\"/>"
+  echo "<DataSet index=\"1\" file=\"$1/${2}_1.vtu\"/></Block>"
+  echo "<Block index=\"1\" name=\"boundary\"><DataSet index=\"0\" file=\"wall.vtp\"/></Block>"
+  echo "<DataSet index=\"2\" file=\"$1/${2}_2.vtu\"/>"
+  echo '</vtkMultiBlockDataSet></VTKFile>'
+}
+blocks steps steps > steps.vtm
+for k in 0 1 2; do blocks run_t$k run_t$k > run/run_t$k.vtm; done  # relative to run/
+echo '{"file-series-version": "1.0", "files": [
+  {"name": "run/run_t0.vtm", "time": 0}, {"name": "run/run_t1.vtm", "time": 0.5},
+  {"name": "run/run_t2.vtm", "time": 1}]}' > run.vtm.series
+
+"$sm" info steps.vtm | grep -q "VTK XML multiblock (.vtm) of unstructured grids, 3 pieces" ||
+  fail "info does not describe the .vtm"
+for n in 1 3; do
+  mpi $n "$sm" render steps.pvtu "${view[@]}" --time all --out pvtu$n.pfm
+  mpi $n "$sm" render steps.vtm "${view[@]}" --time all --out vtm$n.pfm
+  mpi $n "$sm" render run.vtm.series "${view[@]}" --time all --out series$n.pfm
+  for k in 0 1 2; do
+    cmp pvtu${n}_000$k.pfm vtm${n}_000$k.pfm || fail ".vtm frame $k on $n rank(s) is not the .pvtu's"
+    cmp pvtu${n}_000$k.pfm series${n}_000$k.pfm ||
+      fail ".vtm.series frame $k on $n rank(s) is not the .pvtu's"
+  done
+done
+echo "multiblock: all checks passed"
