@@ -1,13 +1,12 @@
 #include "app/cell_data_share.h"
 
 #include <algorithm>
-#include <limits>
 #include <utility>
 #include <vector>
 
+#include "app/piece_agreement.h"
 #include "border/border_exchange.h"
 #include "common/error.h"
-#include "common/hash.h"
 
 namespace sm::app {
 namespace {
@@ -26,51 +25,11 @@ uint64_t cellFieldSteps(const mesh::UnstructuredMesh& m) {
   return steps;
 }
 
-std::vector<double> asDoubles(const std::string& s) {
-  return std::vector<double>(s.begin(), s.end());
-}
-
-std::string asText(const std::vector<double>& v) {
-  std::string s;
-  for (double c : v) s += char(c);
-  return s;
-}
-
 // Every rank holding pieces must hold the same cell fields, or the rounds of the exchange would
-// not pair up. On a mismatch, rank 0 learns what each rank holds and every rank throws its words.
+// not pair up.
 void checkSameCellFields(const mesh::UnstructuredMesh& m, bool holds, const std::string& pieces,
                          Collectives& coll) {
-  const std::string fields = describeCellFields(m);
-  // 52 bits of the description's hash: exact in a double, so that ranks compare it by min and max.
-  const double signature =
-      double(hashBytes(fields.data(), fields.size()) & ((uint64_t(1) << 52) - 1));
-  const double lo = coll.min(holds ? signature : std::numeric_limits<double>::infinity());
-  const double hi = coll.max(holds ? signature : -1.0);
-  if (hi < 0 || lo == hi) return;
-  // Each holder's words to rank 0: who it is, a NUL, what it holds.
-  const std::string mine =
-      holds ? concat("rank ", coll.rank(), " (", pieces, ")", '\0', fields) : std::string();
-  std::vector<std::vector<double>> toRank(coll.size());
-  toRank[0] = asDoubles(mine);
-  const std::vector<std::vector<double>> all = coll.exchange(toRank);
-  std::string message;
-  if (coll.rank() == 0) {
-    std::string first, firstFields, other;
-    for (const auto& d : all) {
-      const std::string text = asText(d);
-      if (text.empty()) continue;
-      const size_t cut = text.find('\0');
-      const std::string who = text.substr(0, cut), what = text.substr(cut + 1);
-      if (first.empty()) {
-        first = concat(who, " has ", what);
-        firstFields = what;
-      } else if (other.empty() && what != firstFields) {
-        other = concat(who, " has ", what);
-      }
-    }
-    message = concat(m.source, ": the pieces do not hold the same cell data: ", first, "; ", other);
-  }
-  throw Error(broadcastString(coll, message));
+  checkPiecesAgree(m.source, "cell data", describeCellFields(m), holds, pieces, coll);
 }
 
 }  // namespace

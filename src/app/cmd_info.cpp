@@ -148,7 +148,9 @@ void registerInfo(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* sub =
       app.add_subcommand("info", "Describe a mesh file: cells, clusters, fields, bounds");
-  sub->add_option("file", o->file, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
+  sub->add_option("file", o->file,
+                  "Mesh file (.vtu, .pvtu, .vtm, .vtk, .ugrid; time series as .pvd or .series)")
+      ->required();
   sub->add_flag("--json", o->json, "Print one JSON object instead of text");
   sub->add_option("--field", o->fields,
                   "Field to load, NAME or NAME[k]; cell data is averaged onto the points "

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "app/cell_data_share.h"
+#include "app/piece_agreement.h"
 #include "common/error.h"
 #include "common/log.h"
 #include "partition/partition.h"
@@ -49,6 +50,22 @@ std::string pieceNames(const std::string& path, const RankShare& s) {
   return names;
 }
 
+// What a rank's pieces hold as point fields, in words, by name: the same on every rank for pieces
+// that agree, whatever the order the pieces list them in.
+std::string describePointFields(const RankShare& s) {
+  std::vector<std::pair<std::string, uint64_t>> fields;
+  if (s.stream)
+    for (const io::FieldStepCount& f : s.stream->fieldSteps) fields.push_back({f.name, f.steps});
+  else
+    for (const mesh::Field& f : s.mesh.fields) fields.push_back({f.name, f.numSteps()});
+  std::sort(fields.begin(), fields.end());
+  std::string text;
+  for (const auto& [name, steps] : fields)
+    text += concat(text.empty() ? "" : ", ", "'", name, "' with ", steps,
+                   steps == 1 ? " step" : " steps");
+  return text.empty() ? "no point fields" : text;
+}
+
 // cellData: the field asked for is cell data, averaged onto the points with the other ranks' help
 // (a point between two ranks' pieces takes the cells of both).
 RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellData,
@@ -73,6 +90,11 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
+  // One rank reading every piece refuses pieces whose point fields differ (io::listFieldSteps);
+  // ranks reading some each must come to the same answer.
+  if (coll.size() > 1)
+    checkPiecesAgree(path, "point fields", describePointFields(s), !s.clusters.empty(),
+                     pieceNames(path, s), coll);
   if (cellData) cellDataToPointsOverRanks(s.mesh, !s.clusters.empty(), pieceNames(path, s), coll);
   return s;
 }

@@ -14,7 +14,9 @@ namespace sm::app {
 void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                      const std::string& timeHelp) {
   auto& t = raw.text;
-  cmd->add_option("mesh", job.mesh, "Mesh file (.vtu, .pvtu, .vtk, .ugrid)")->required();
+  cmd->add_option("mesh", job.mesh,
+                  "Mesh file (.vtu, .pvtu, .vtm, .vtk, .ugrid; time series as .pvd or .series)")
+      ->required();
   cmd->add_option(
          "--field", job.field,
          "Field to render: NAME, a component NAME[k], or cell data (averaged onto the points); "

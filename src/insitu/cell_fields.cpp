@@ -7,7 +7,7 @@
 namespace sm::insitu {
 
 CellFields::CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds)
-    : globalIds_(std::move(globalIds)), numCells_(input.numCells()) {
+    : globalIds_(std::move(globalIds)), numPoints_(input.numPoints()), numCells_(input.numCells()) {
   mesh_.source = "setCellField";
   mesh_.points = input.points;
   mesh_.cells = input.cells;
@@ -16,18 +16,22 @@ CellFields::CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t
 void CellFields::findSharedPoints(border::RankExchange& ranks) {
   found_ = true;
   uses_ = mesh::cellUsesAtPoints(mesh_);
-  if (ranks.size() == 1) return;
-  border_ = std::make_unique<border::BorderExchange>(mesh_, ranks, globalIds_);
-  std::vector<std::vector<double>> columns{std::move(uses_)};
-  border_->addOtherRanks(columns, ranks);
-  uses_ = std::move(columns[0]);
+  if (ranks.size() > 1) {
+    border_ = std::make_unique<border::BorderExchange>(mesh_, ranks, globalIds_);
+    std::vector<std::vector<double>> columns{std::move(uses_)};
+    border_->addOtherRanks(columns, ranks);
+    uses_ = std::move(columns[0]);
+  }
+  // Positions and ids only name the shared points: from here on the cells suffice.
+  std::vector<glm::dvec3>().swap(mesh_.points);
+  std::vector<uint64_t>().swap(globalIds_);
 }
 
 std::vector<float> CellFields::toPoints(std::span<const float> values,
                                         border::RankExchange& ranks) {
   SM_CHECK_EQ(values.size(), numCells_);
   if (!found_) findSharedPoints(ranks);
-  std::vector<std::vector<double>> sums(1, std::vector<double>(mesh_.numPoints(), 0.0));
+  std::vector<std::vector<double>> sums(1, std::vector<double>(numPoints_, 0.0));
   size_t cell = 0;
   for (int t = 0; t < mesh::kNumCellTypes; ++t) {
     const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);

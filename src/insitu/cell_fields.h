@@ -18,8 +18,8 @@ class CellFields {
  public:
   CellFields() = default;  // no mesh yet
   // Keeps the points and cells of this rank's mesh as setMesh built it, before preparation takes
-  // them (about 4 bytes per element vertex and 24 per vertex): the values of a later call are
-  // summed at the caller's vertices.
+  // them (4 bytes per element vertex, 24 per vertex and 8 per global id): the values of a later
+  // call are summed at the caller's vertices. The first call frees the points and ids.
   // globalIds: MeshView::globalIds (empty: shared vertices are found by their coordinates).
   CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds);
 
@@ -36,7 +36,7 @@ class CellFields {
 
   mesh::UnstructuredMesh mesh_;  // points and cells only
   std::vector<uint64_t> globalIds_;
-  uint64_t numCells_ = 0;
+  uint64_t numPoints_ = 0, numCells_ = 0;
   bool found_ = false;  // findSharedPoints has run (collective: a flag, not a size test)
   std::unique_ptr<border::BorderExchange> border_;  // null on one rank: nothing is shared
   std::vector<double> uses_;                        // elements at each vertex, every rank's

@@ -110,6 +110,14 @@ void Renderer::Impl::setMesh(const MeshView& view) {
     m = sm::insitu::meshFromView(view);
     globalIds = sm::insitu::globalIdsFromView(view);
   });
+  // Vertices named by id on one rank and by coordinates on another would never meet.
+  const bool hasVertices = m.numPoints() > 0;
+  const double byId = group.max(hasVertices && !globalIds.empty() ? 1.0 : 0.0);
+  const double byPosition = group.max(hasVertices && globalIds.empty() ? 1.0 : 0.0);
+  if (byId > 0 && byPosition > 0)
+    throw Error(
+        "setMesh: globalIds given on some ranks but not on others (give them on every rank that "
+        "holds vertices, or on none)");
   frame = agreeOnFrame(m);
   if (frame.elements == 0)
     throw Error("setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");

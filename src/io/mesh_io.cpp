@@ -28,7 +28,9 @@ Format formatOf(const std::string& path) {
 // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
 void checkNoPieces(const std::string& name, const ReadOptions& options) {
   if (!options.pieces.empty())
-    throw FileError(name, "has no pieces to choose from (only a .pvtu has pieces)");
+    throw FileError(
+        name,
+        "has no pieces to choose from (only a .pvtu or .vtm, or a series of them, has pieces)");
 }
 
 // Cell data asked for as fields becomes point data once every piece read is joined, so that
@@ -88,7 +90,7 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
       return withCellDataOnPoints(readVtu(FileBytes::copyOf(bytes), name, options),
                                   options.cellDataOnPoints);
     case Format::Pvtu:
-      throw Error(name, ": a .pvtu names its pieces by file; read it with readMesh");
+      throw Error(name, ": a .pvtu or .vtm names its pieces by file; read it with readMesh");
     case Format::LegacyVtk:
       return withCellDataOnPoints(readLegacyVtk(FileBytes::copyOf(bytes), name, options),
                                   options.cellDataOnPoints);

@@ -39,8 +39,8 @@ std::vector<std::string> vtmPieceFiles(const std::string& path, const OpenFile& 
     } else if (ext == ".pvtu") {
       for (std::string& piece : pvtuPieceFiles(resolved, open)) files.push_back(std::move(piece));
     } else if (ext == ".vtm") {
-      throw FileError(path, "names another multiblock file ('", file,
-                      "'); nest its blocks instead");
+      throw FileError(path, resolved == path ? "names itself" : "names another multiblock file",
+                      " ('", file, "'); nest its blocks instead");
     }
   }
   if (files.empty())
@@ -98,15 +98,22 @@ int countPvtuPieces(const std::string& path) {
 
 namespace {
 
-// The unsigned number in attribute `key` of one tag's text (`<Piece NumberOfPoints="8" ...`).
+// The unsigned number in attribute `key` of one tag's text (`<Piece NumberOfPoints="8" ...`; XML
+// allows spaces around '=' and either quote).
 uint64_t tagNumber(const std::string& file, std::string_view tag, std::string_view key) {
+  auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
   for (size_t a = tag.find(key); a != std::string_view::npos; a = tag.find(key, a + 1)) {
-    const size_t open = a + key.size();
-    if (!isspace(static_cast<unsigned char>(tag[a - 1])) || tag.substr(open, 2) != "=\"") continue;
-    const char* first = tag.data() + open + 2;
+    if (a == 0 || !space(tag[a - 1])) continue;
+    size_t at = a + key.size();
+    while (at < tag.size() && space(tag[at])) ++at;
+    if (at >= tag.size() || tag[at] != '=') continue;
+    ++at;
+    while (at < tag.size() && space(tag[at])) ++at;
+    if (at >= tag.size() || (tag[at] != '"' && tag[at] != '\'')) continue;
+    const char quote = tag[at++];
     uint64_t n = 0;
-    auto [end, ec] = std::from_chars(first, tag.data() + tag.size(), n);
-    if (ec != std::errc() || *end != '"')
+    auto [end, ec] = std::from_chars(tag.data() + at, tag.data() + tag.size(), n);
+    if (ec != std::errc() || end == tag.data() + tag.size() || *end != quote)
       throw FileError(file, "<Piece> attribute ", key, " is not a number");
     return n;
   }

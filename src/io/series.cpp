@@ -4,6 +4,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
@@ -94,12 +96,6 @@ void checkSteps(const std::string& path, std::vector<SeriesStep>& steps) {
                       "of a .pvtu)");
 }
 
-// Formats whose headers give the sizes and whose fields are read one array at a time.
-bool readsByArray(const std::string& file) {
-  const std::string ext = fileExtension(file);
-  return ext == ".vtu" || isPieceIndex(file);
-}
-
 std::string stepName(uint64_t k, const SeriesStep& s) {
   return concat("step ", k, " ('", s.file, "')");
 }
@@ -125,10 +121,14 @@ void checkSameSizes(const std::string& path, const std::vector<SeriesStep>& step
   const std::vector<DeclaredSize> mine = declaredSizes(steps[k].file, options);
   if (mine == first) return;
   const DeclaredSize a = total(mine), b = total(first);
-  if (a != b || mine.size() != first.size())
+  if (a != b)
     throw FileError(path, stepName(k, steps[k]), " has ", a.points, " points and ", a.cells,
                     " cells, step 0 ('", steps[0].file, "') ", b.points, " and ", b.cells,
                     ": every step of a series must be the same mesh");
+  if (mine.size() != first.size())
+    throw FileError(path, stepName(k, steps[k]), " has ", mine.size(), " pieces, step 0 ('",
+                    steps[0].file, "') ", first.size(),
+                    ": every step of a series must be the same mesh, in the same pieces");
   size_t i = 0;
   while (mine[i] == first[i]) ++i;
   std::vector<int> chosen = options.pieces;
@@ -199,10 +199,32 @@ bool isSeries(const std::string& path) {
 }
 
 std::vector<SeriesStep> readSeriesIndex(const std::string& path) {
+  // A stream asks for the index at every frame, and loading asks several times: the last index
+  // read is kept while its file is unchanged (same size and modification time).
+  struct Cached {
+    std::string path;
+    std::filesystem::file_time_type time;
+    uintmax_t size = 0;
+    std::vector<SeriesStep> steps;
+  };
+  static std::mutex mutex;
+  static Cached cached;
+  std::error_code ec;
+  const auto time = std::filesystem::last_write_time(path, ec);
+  const uintmax_t size = ec ? 0 : std::filesystem::file_size(path, ec);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!ec && cached.path == path && cached.time == time && cached.size == size)
+      return cached.steps;
+  }
   const std::string text = FileBytes::readPrefix(path, size_t(1) << 28);
   std::vector<SeriesStep> steps =
       fileExtension(path) == ".pvd" ? pvdSteps(path, text) : jsonSteps(path, text);
   checkSteps(path, steps);
+  if (!ec) {
+    std::lock_guard<std::mutex> lock(mutex);
+    cached = {path, time, size, steps};
+  }
   return steps;
 }
 
@@ -213,7 +235,7 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
   one.step.reset();
   if (options.step) {  // that step's file alone (a later step than the last: the last, as a field)
     const uint64_t k = std::min<uint64_t>(*options.step, steps.size() - 1);
-    if (k > 0 && readsByArray(steps[k].file))
+    if (k > 0 && readsStepsAlone(steps[k].file))
       checkSameSizes(path, steps, k, options, declaredSizes(steps[0].file, options));
     mesh::UnstructuredMesh m = readStep(steps[k].file, one);
     for (const mesh::Field& f : m.fields) checkOneStep(path, k, steps[k], f.name, f.numSteps());
@@ -226,10 +248,17 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
   for (const mesh::Field& f : m.fields) checkOneStep(path, 0, steps[0], f.name, f.numSteps());
   for (const mesh::CellField& f : m.cellFields)
     checkOneStep(path, 0, steps[0], f.name, f.steps.size());
-  const bool byArray = readsByArray(steps[0].file) && m.cellFields.empty();
+  // Cell data (and formats without headers to go by) comes with each step's whole file; the
+  // sizes its headers declare, when it has them, are checked first all the same, since a welded
+  // total can hide pieces in another order.
+  const bool headers = readsStepsAlone(steps[0].file);
+  const bool byArray = headers && m.cellFields.empty();
   const FirstStep first = byArray ? firstStep(path, steps, one) : FirstStep{};
+  const std::vector<DeclaredSize> firstSizes =
+      headers && !byArray ? declaredSizes(steps[0].file, one) : std::vector<DeclaredSize>{};
   for (uint64_t k = 1; k < steps.size(); ++k) {
     if (!byArray) {
+      if (headers) checkSameSizes(path, steps, k, one, firstSizes);
       appendStep(path, k, steps[k], m, readStep(steps[k].file, one));
       continue;
     }
@@ -244,7 +273,7 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
 
 std::vector<FieldStepCount> seriesFieldSteps(const std::string& path, const ReadOptions& options) {
   const std::vector<SeriesStep> steps = readSeriesIndex(path);
-  if (!readsByArray(steps[0].file)) {  // read whole: listing step 0 reads it all
+  if (!readsStepsAlone(steps[0].file)) {  // read whole: listing step 0 reads it all
     std::vector<FieldStepCount> fields = listFieldSteps(steps[0].file, options);
     for (FieldStepCount& f : fields) {
       checkOneStep(path, 0, steps[0], f.name, f.steps);
@@ -266,8 +295,9 @@ std::vector<float> seriesFieldStep(const std::string& path, const std::string& f
   if (step >= steps.size())
     throw FileError(path, "field '", field, "' has ", steps.size(), " time steps (0 .. ",
                     steps.size() - 1, "), not step ", step);
-  // Checked when the series was listed; a file replaced since then is caught by its sizes.
-  if (step > 0 && readsByArray(steps[step].file))
+  // Every step's headers were checked when the series was listed (io::listFieldSteps); its sizes
+  // are checked again (headers only), so that a step replaced since reads as an error.
+  if (step > 0 && readsStepsAlone(steps[step].file))
     checkSameSizes(path, steps, step, options, declaredSizes(steps[0].file, options));
   return readFieldStep(steps[step].file, field, 0, options, pointMap);
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -409,18 +410,29 @@ void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
   if (!mesh.timeValues.empty() && mesh.timeValues.size() != steps)
     throw Error(path, ": the mesh has ", steps, " time steps but ", mesh.timeValues.size(),
                 " time values");
+  // Readers order a series by time: times out of order would come back as other steps.
+  for (size_t k = 0; k < mesh.timeValues.size(); ++k)
+    if (!std::isfinite(mesh.timeValues[k]) ||
+        (k > 0 && !(mesh.timeValues[k] > mesh.timeValues[k - 1])))
+      throw Error(path, ": time value ", k, " (", mesh.timeValues[k],
+                  ") is not finite and after the one before; a series needs increasing times");
   std::error_code ec;
   if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
     throw FileError(path, "cannot write: exists and is not a regular file");
   // One copy of the geometry, whose fields hold one step at a time.
-  mesh::UnstructuredMesh step = mesh;
+  mesh::UnstructuredMesh step;
+  step.source = mesh.source;
+  step.points = mesh.points;
+  step.cells = mesh.cells;
+  step.clusters = mesh.clusters;
+  for (const mesh::Field& f : mesh.fields)
+    if (f.numSteps() > 0) step.fields.push_back({f.name, {}});
   std::string sets;
   for (uint64_t k = 0; k < steps; ++k) {
-    for (size_t f = 0; f < mesh.fields.size(); ++f) {
-      const mesh::Field& all = mesh.fields[f];
-      step.fields[f].steps = {all.steps[std::min<uint64_t>(k, all.numSteps() - 1)]};
-    }
-    step.timeValues.clear();
+    size_t out = 0;
+    for (const mesh::Field& all : mesh.fields)
+      if (all.numSteps() > 0)
+        step.fields[out++].steps = {all.steps[std::min<uint64_t>(k, all.numSteps() - 1)]};
     const std::string file = concat(stem, "/", stem, "_t", k, ".pvtu");
     writePvtu((p.parent_path() / file).string(), step, options);
     char time[32];  // every digit: times read back exactly

@@ -98,9 +98,27 @@ for n in 1 2; do
   if mpi $n "$sm" render four.pvtu "${view[@]}" --time all --out mixed$n.pfm >mixed$n.log 2>&1; then
     fail "pieces with 4 and 2 steps rendered on $n rank(s)"
   fi
-  grep -q "four.pvtu: .*2 time steps of field" mixed$n.log || { cat mixed$n.log; fail "no message naming the file and the counts ($n rank(s))"; }
+  grep -q "four.pvtu: .*[24] time steps\|four.pvtu: .*with [24] steps" mixed$n.log || { cat mixed$n.log; fail "no message naming the file and the counts ($n rank(s))"; }
   if ls mixed${n}_*.pfm >/dev/null 2>&1; then fail "a frame was written ($n rank(s))"; fi
 done
-grep -q "the pieces of rank [01] have 2 time steps of field 'vortex', those of rank [01] 4 time steps" mixed2.log ||
-  fail "the 2-rank message does not name the ranks and counts"
+grep -q "four.pvtu: the pieces do not hold the same point fields: rank [01] (four/four_[01].vtu) has 'vortex' with [24] steps; rank [01] (four/four_[01].vtu) has 'vortex' with [24] steps" mixed2.log ||
+  { cat mixed2.log; fail "the 2-rank message does not name the ranks, their pieces and counts"; }
+# Pieces whose fields differ in a field not rendered are refused on any rank count too (one rank
+# reading both pieces lists every field).
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 2 --steps 2 --out lacks.pvtu
+python3 - <<'PY'
+import re
+p = 'lacks/lacks_1.vtu'
+b = open(p, 'rb').read()
+head, sep, rest = b.partition(b'<AppendedData')
+head = re.sub(rb'Name="shock@t', rb'Name="other@t', head)  # the same bytes, another field name
+open(p, 'wb').write(head + sep + rest)
+PY
+for n in 1 2; do
+  if mpi $n "$sm" render lacks.pvtu --size 32x32 --out lacks$n.png >lacks$n.log 2>&1; then
+    fail "pieces with different fields rendered on $n rank(s)"
+  fi
+  grep -q "lacks.pvtu: .*shock\|lacks.pvtu: .*other" lacks$n.log || { cat lacks$n.log; fail "no message naming the fields ($n rank(s))"; }
+  if ls lacks$n.png >/dev/null 2>&1; then fail "an image was written ($n rank(s))"; fi
+done
 echo "time steps: all checks passed"

@@ -181,6 +181,18 @@ TEST(InsituMpi, GlobalIdsKeepABaffleBetweenRanksApart) {
       EXPECT_GT(err, 1e-3);  // why the ids are there: coordinates join the sides
     }
   }
+  if (worldSize() < 2) return;
+  // Ids on one rank and coordinates on another would never name a vertex alike: refused.
+  api::Renderer vis(MPI_COMM_WORLD);
+  try {
+    vis.setMesh(mine.view(r == 0));
+    ADD_FAILURE() << "setMesh did not throw";
+  } catch (const api::Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("setMesh: globalIds given on some ranks but not on others"),
+        std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(InsituMpi, CellFieldErrorsThrowOnEveryRank) {

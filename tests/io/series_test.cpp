@@ -194,6 +194,86 @@ TEST(Series, LongHeadersAreSizedWhole) {
   }
 }
 
+// Two tetrahedra with point field f as a legacy ascii .vtk: a format read whole for every step.
+std::string legacyTwoTets(float scale) {
+  std::string f;
+  for (int i = 0; i < 5; ++i) f += std::to_string(scale * float(i)) + " ";
+  return "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n"
+         "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 2 10\n4 0 1 2 3\n4 1 2 3 4\nCELL_TYPES 2\n10\n10\n"
+         "POINT_DATA 5\nSCALARS f float 1\nLOOKUP_TABLE default\n" +
+         f + "\n";
+}
+
+TEST(Series, StepsReadWholeAndTimesByPosition) {
+  const std::string dir = sm::test::outputDir("Series.Legacy");
+  writeText(dir + "/a.vtk", legacyTwoTets(1));
+  writeText(dir + "/b.vtk", legacyTwoTets(2));
+  writeText(dir + "/c.vtk", legacyTwoTets(3));
+  // A data set with no timestep counts as its position (here 1, between 0.5 and 1.5).
+  writeText(dir + "/s.pvd",
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"1.5\" file=\"c.vtk\"/>"
+            "<DataSet file=\"b.vtk\"/><DataSet timestep=\"0.5\" file=\"a.vtk\"/>"
+            "</Collection></VTKFile>");
+  const mesh::UnstructuredMesh m = readMesh(dir + "/s.pvd");
+  EXPECT_EQ(m.timeValues, (std::vector<double>{0.5, 1, 1.5}));
+  ASSERT_EQ(m.fields.size(), 1u);
+  ASSERT_EQ(m.fields[0].numSteps(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(m.fields[0].steps[k][4], 4.0f * float(k + 1)) << k;
+  EXPECT_FALSE(readsStepsAlone(dir + "/s.pvd"));
+  EXPECT_EQ(readFieldStep(dir + "/s.pvd", "f", 2), m.fields[0].steps[2]);
+  EXPECT_EQ(listFieldSteps(dir + "/s.pvd").at(0).steps, 3u);
+  // Another mesh in a later step: compared by its counts after the whole read.
+  writeText(dir + "/d.vtk",
+            "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+            "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n"
+            "POINT_DATA 4\nSCALARS f float 1\nLOOKUP_TABLE default\n1 2 3 4\n");
+  writeText(dir + "/t.pvd",
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"a.vtk\"/>"
+            "<DataSet timestep=\"1\" file=\"d.vtk\"/></Collection></VTKFile>");
+  EXPECT_NE(fileErrorOf([&] {
+              readMesh(dir + "/t.pvd");
+            }).find("step 1 ('" + dir + "/d.vtk') has 4 points and 1 cells, step 0 5 and 2"),
+            std::string::npos);
+}
+
+TEST(Series, CellDataStepsWithPiecesInAnotherOrderAreRefused) {
+  const std::string dir = sm::test::outputDir("Series.CellPieces");
+  // Pieces of different sizes: a.vtu two tetrahedra, b.vtu one.
+  writeText(dir + "/a.vtu", twoTets(1, 3));
+  std::string one = twoTets(5, 0);
+  auto edit = [&](const std::string& from, const std::string& to) {
+    const size_t at = one.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    one.replace(at, from.size(), to);
+  };
+  edit("NumberOfCells=\"2\"", "NumberOfCells=\"1\"");
+  edit(">0 1 2 3 1 2 3 4<", ">1 2 3 4<");
+  edit(">4 8<", ">4<");
+  edit(">10 10<", ">10<");
+  edit(">5.000000 0.000000<", ">5.000000<");
+  writeText(dir + "/b.vtu", one);
+  writeText(dir + "/s0.pvtu",
+            "<VTKFile type=\"PUnstructuredGrid\"><PUnstructuredGrid><Piece Source=\"a.vtu\"/>"
+            "<Piece Source=\"b.vtu\"/></PUnstructuredGrid></VTKFile>");
+  writeText(dir + "/s1.pvtu",
+            "<VTKFile type=\"PUnstructuredGrid\"><PUnstructuredGrid><Piece Source=\"b.vtu\"/>"
+            "<Piece Source=\"a.vtu\"/></PUnstructuredGrid></VTKFile>");
+  writeText(dir + "/s.pvd",
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"s0.pvtu\"/>"
+            "<DataSet timestep=\"1\" file=\"s1.pvtu\"/></Collection></VTKFile>");
+  ReadOptions o;
+  o.fields = {"p"};
+  EXPECT_EQ(readMesh(dir + "/s0.pvtu", o).numCells(), 3u);  // the pieces themselves are fine
+  for (bool onPoints : {true, false}) {
+    o.cellDataOnPoints = onPoints;
+    EXPECT_NE(fileErrorOf([&] { readMesh(dir + "/s.pvd", o); })
+                  .find("step 1 ('" + dir +
+                        "/s1.pvtu') piece 0 has 5 points and 1 cells, that "
+                        "of step 0 5 and 2"),
+              std::string::npos);
+  }
+}
+
 TEST(Series, BadIndexesAndStepsAreNamed) {
   const std::string dir = sm::test::outputDir("Series.Errors");
   writeText(dir + "/a.vtu", twoTets(1, 3));
@@ -273,6 +353,12 @@ TEST(Series, BadIndexesAndStepsAreNamed) {
 
   const std::vector<uint8_t> bytes{'<'};
   EXPECT_THROW(readMeshFromMemory(bytes, "x.pvd"), Error);
+
+  // Times a reader would put in another order are refused when written.
+  mesh::UnstructuredMesh backwards = threeSteps();
+  backwards.timeValues = {0.0, 2.0, 1.0};
+  EXPECT_THROW(writePvdSeries(other + "/backwards.pvd", backwards), Error);
+  EXPECT_FALSE(fs::exists(other + "/backwards.pvd"));
 }
 
 }  // namespace

@@ -181,7 +181,8 @@ class SHELLMARCH_INSITU_API Renderer {
   // Collective: every rank calls it with the same name. Copies one field given per element (as
   // finite-volume solvers hold their unknowns), in setMesh's order: the tetrahedra, then the
   // pyramids, wedges and hexahedra. Each vertex gets the mean of the elements that use it, on
-  // every rank (vertices shared between ranks are found by their coordinates, bit for bit), as
+  // every rank (vertices shared between ranks are found by MeshView::globalIds when given, else
+  // by their coordinates, bit for bit), as
   // one process holding the whole mesh would compute it (ParaView's Cell Data to Point Data): no
   // seam at the partition's borders. The result is held as a vertex field under `name`. A NaN
   // element makes its vertices NaN (transparent). The first call after setMesh also finds the
