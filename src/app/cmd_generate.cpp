@@ -1,5 +1,6 @@
 // `shellmarch generate`: CFD-like meshes from gmsh (a capsule or a lander in a far-field box) or
 // tiny analytic meshes, split into clusters, with analytic fields, written as .pvtu.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -27,6 +28,7 @@ struct GenerateArgs {
   std::string analytic;
   int cubeN = 4;
   int threads = 1;
+  bool cellData = false;
   std::string out;
 };
 
@@ -88,9 +90,11 @@ std::string summary(const std::string& out, const mesh::UnstructuredMesh& m, dou
   }
   char time[32];
   std::snprintf(time, sizeof time, "%.1f", seconds);
+  uint64_t steps = m.numSteps();
+  for (const mesh::CellField& f : m.cellFields) steps = std::max<uint64_t>(steps, f.steps.size());
   return concat("wrote ", out, ": ", m.numCells(), " elements (", types, "), ", m.numClusters(),
-                " clusters, ", m.numSteps(), m.numSteps() == 1 ? " step, " : " steps, ", time,
-                " s");
+                " clusters, ", steps, steps == 1 ? " step" : " steps",
+                m.cellFields.empty() ? "" : " of cell data", ", ", time, " s");
 }
 
 void runGenerate(const GenerateArgs& a, const CLI::App& cmd) {
@@ -112,6 +116,7 @@ void runGenerate(const GenerateArgs& a, const CLI::App& cmd) {
     partition::assignMetisClusters(m, a.clusters, a.seed);
     gen::addAnalyticFields(m, a.steps);
   }
+  if (a.cellData) mesh::pointFieldsToCells(m);
   if (fileExtension(a.out) == ".pvd")
     io::writePvdSeries(a.out, m);  // a .pvtu per step, as solvers write a time series
   else
@@ -142,6 +147,9 @@ void registerGenerate(CLI::App& app) {
   cmd->add_option("--threads", args->threads,
                   "gmsh threads (0: all cores; 1 gives bit-identical meshes)")
       ->capture_default_str();
+  cmd->add_flag("--cell-data", args->cellData,
+                "Write the fields as cell data, each element the mean of its vertices (as "
+                "finite-volume solvers write theirs)");
   cmd->add_option("--out", args->out,
                   "Output .pvtu (pieces go beside it), or .pvd (a time series: a .pvtu per step)")
       ->required();

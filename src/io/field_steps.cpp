@@ -55,7 +55,7 @@ std::vector<FieldLoad> planAllSteps(const std::string& source, const std::vector
 }
 
 std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOptions& options) {
-  FileBytes bytes = FileBytes::open(file);
+  FileBytes bytes = FileBytes::openLazily(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
   std::vector<VtuPiece> pieces = vtuPieces(doc);
   const std::vector<ArrayInfo> points = vtuPointArrays(doc, pieces[0]);
@@ -113,44 +113,55 @@ std::vector<FieldStepCount> stepsOfMesh(const mesh::UnstructuredMesh& m) {
   return fields;
 }
 
+// Where a field's values sit: one per point, or one per cell.
+enum class Data { Points, Cells };
+
 std::vector<float> vtuFieldStep(const std::string& file, const std::string& field, uint64_t step,
-                                unsigned threads) {
-  FileBytes bytes = FileBytes::open(file);
+                                unsigned threads, Data data) {
+  FileBytes bytes = FileBytes::openLazily(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", threads);
   std::vector<VtuPiece> pieces = vtuPieces(doc);
-  const std::vector<ArrayInfo> arrays = vtuPointArrays(doc, pieces[0]);
+  const bool cells = data == Data::Cells;
+  const std::vector<ArrayInfo> pointArrays = vtuPointArrays(doc, pieces[0]);
+  const std::vector<ArrayInfo> cellArrays = vtuCellArrays(doc, pieces[0]);
   ReadOptions one;
   one.fields = {field};
-  if (splitFieldRequests(arrays, vtuCellArrays(doc, pieces[0]), one).cells.loadFields)
-    throw FileError(file, "holds '", field,
-                    "' as cell data, which is read with the mesh, not one step at a time (the "
-                    "pieces of a .pvtu must hold it alike: all as cell data or all as point data)");
-  const std::vector<FieldLoad> loads = planFields(file, arrays, one);
+  const bool isCellData = splitFieldRequests(pointArrays, cellArrays, one).cells.loadFields;
+  if (isCellData != cells)
+    throw FileError(file, "holds '", field, "' as ", isCellData ? "cell" : "point", " data, not ",
+                    cells ? "cell" : "point",
+                    " data as its first step did (every step, and every piece of a .pvtu, must "
+                    "hold it alike)");
+  const std::vector<ArrayInfo>& arrays = cells ? cellArrays : pointArrays;
+  const char* kind = cells ? "cell" : "point";
+  const std::vector<FieldLoad> loads = planFields(file, arrays, one, {}, kind);
   auto load =
       std::find_if(loads.begin(), loads.end(), [&](const FieldLoad& l) { return l.step == step; });
   if (load == loads.end())
-    throw FileError(file, "has no point array '", splitStepName(arrays[loads[0].array].name).base,
-                    "@t", step, "' (field '", field, "' has ", loads.size(),
+    throw FileError(file, "has no ", kind, " array '",
+                    splitStepName(arrays[loads[0].array].name).base, "@t", step, "' (field '",
+                    field, "' has ", loads.size(),
                     loads.size() == 1 ? " time step)" : " time steps)");
   const ArrayInfo& info = arrays[load->array];
-  const std::string what = concat("point array '", info.name, "'");
+  const std::string what = concat(kind, " array '", info.name, "'");
   std::vector<float> values;
   for (const VtuPiece& p : pieces) {
-    pugi::xml_node a = findDataArray(p.node.child("PointData"), info.name);
-    if (!a) throw FileError(file, "a piece lacks the point array '", info.name, "'");
+    pugi::xml_node a = findDataArray(p.node.child(cells ? "CellData" : "PointData"), info.name);
+    if (!a) throw FileError(file, "a piece lacks the ", what);
     std::vector<float> v =
-        toFloats(doc.decode(a, p.numPoints, what, info.components), load->component, threads);
+        toFloats(doc.decode(a, cells ? p.numCells : p.numPoints, what, info.components),
+                 load->component, threads);
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;
 }
 
 std::vector<float> pvtuFieldStep(const std::string& path, const std::string& field, uint64_t step,
-                                 const ReadOptions& options) {
+                                 const ReadOptions& options, Data data) {
   const std::vector<std::string> files = pvtuPieceFiles(path);
   std::vector<float> values;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
-    std::vector<float> v = vtuFieldStep(files[i], field, step, options.threads);
+    std::vector<float> v = vtuFieldStep(files[i], field, step, options.threads, data);
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;
@@ -171,15 +182,15 @@ std::vector<float> wholeReadFieldStep(const std::string& path, const std::string
   return std::move(f->steps[step]);
 }
 
-std::vector<float> mapPoints(const std::string& path, std::vector<float> values,
-                             std::span<const uint32_t> pointMap) {
-  if (pointMap.empty()) return values;
-  std::vector<float> out(pointMap.size());
-  for (size_t i = 0; i < pointMap.size(); ++i) {
-    if (pointMap[i] >= values.size())
-      throw FileError(path, "has ", values.size(),
-                      " points in the pieces read, fewer than when its mesh was read");
-    out[i] = values[pointMap[i]];
+std::vector<float> mapValues(const std::string& path, std::vector<float> values,
+                             std::span<const uint32_t> map, Data data) {
+  if (map.empty()) return values;
+  std::vector<float> out(map.size());
+  for (size_t i = 0; i < map.size(); ++i) {
+    if (map[i] >= values.size())
+      throw FileError(path, "has ", values.size(), data == Data::Cells ? " cells" : " points",
+                      " in the pieces read, fewer than when its mesh was read");
+    out[i] = values[map[i]];
   }
   return out;
 }
@@ -202,14 +213,31 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
   const std::string ext = fileExtension(path);
   std::vector<float> values;
   if (ext == ".vtu")
-    values = vtuFieldStep(path, field, step, options.threads);
+    values = vtuFieldStep(path, field, step, options.threads, Data::Points);
   else if (isPieceIndex(path))
-    values = pvtuFieldStep(path, field, step, options);
+    values = pvtuFieldStep(path, field, step, options, Data::Points);
   else if (isSeries(path))
     return seriesFieldStep(path, field, step, options, pointMap);
   else
     values = wholeReadFieldStep(path, field, step, options);
-  return mapPoints(path, std::move(values), pointMap);
+  return mapValues(path, std::move(values), pointMap, Data::Points);
+}
+
+std::vector<float> readCellFieldStep(const std::string& path, const std::string& field,
+                                     uint64_t step, const ReadOptions& options,
+                                     std::span<const uint32_t> cellMap) {
+  std::vector<float> values;
+  if (fileExtension(path) == ".vtu")
+    values = vtuFieldStep(path, field, step, options.threads, Data::Cells);
+  else if (isPieceIndex(path))
+    values = pvtuFieldStep(path, field, step, options, Data::Cells);
+  else if (isSeries(path))
+    return seriesCellFieldStep(path, field, step, options, cellMap);
+  else
+    throw Error(path,
+                ": cell data is read one step at a time from .vtu and .pvtu files and "
+                "series of them only");
+  return mapValues(path, std::move(values), cellMap, Data::Cells);
 }
 
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
@@ -218,7 +246,7 @@ bool asksForCellData(const std::string& path, const ReadOptions& options) {
   if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && !isPieceIndex(path)))
     return false;
   const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
-  FileBytes bytes = FileBytes::open(file);
+  FileBytes bytes = FileBytes::openLazily(file);
   VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
   const std::vector<VtuPiece> pieces = vtuPieces(doc);
   return splitFieldRequests(vtuPointArrays(doc, pieces[0]), vtuCellArrays(doc, pieces[0]), options)

@@ -56,14 +56,24 @@ std::string FileBytes::readPrefix(const std::string& path, size_t bytes) {
 }
 
 FileBytes FileBytes::open(const std::string& path) {
+  return map(path, true);
+}
+
+FileBytes FileBytes::openLazily(const std::string& path) {
+  return map(path, false);
+}
+
+FileBytes FileBytes::map(const std::string& path, bool populate) {
   struct stat st {};
   Fd f = openRegular(path, st);
   FileBytes b;
   if (st.st_size == 0) return b;
   // Read-only, so that MAP_POPULATE maps the page cache as it is (a writable mapping would be
-  // populated by copying every page). Populating up front is much cheaper than a fault per page.
-  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE,
-                   f.fd, 0);
+  // populated by copying every page). Populating up front is much cheaper than a fault per page
+  // for a file read whole, and much dearer for one array of a file of many steps (mapping a
+  // solver's 28 MB piece to read 150 KB of it took most of a step's read).
+  void* p = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ,
+                   MAP_PRIVATE | (populate ? MAP_POPULATE : 0), f.fd, 0);
   if (p == MAP_FAILED) throw FileError(path, "cannot map into memory: ", std::strerror(errno));
   b.data_ = static_cast<uint8_t*>(p);
   b.size_ = static_cast<size_t>(st.st_size);

@@ -13,8 +13,12 @@ namespace sm::io {
 
 class FileBytes {
  public:
-  // Throws sm::FileError naming the file when it cannot be opened or mapped.
+  // Throws sm::FileError naming the file when it cannot be opened or mapped. Every page is mapped
+  // up front (for a file read whole).
   static FileBytes open(const std::string& path);
+  // The same, pages mapped as they are first touched: for a read of one array among many (a
+  // time step's).
+  static FileBytes openLazily(const std::string& path);
   // At most the first `bytes` bytes of a regular file (a header), with open's checks.
   static std::string readPrefix(const std::string& path, size_t bytes);
   static FileBytes copyOf(std::span<const uint8_t> bytes);
@@ -33,6 +37,7 @@ class FileBytes {
   uint8_t* writableData();
 
  private:
+  static FileBytes map(const std::string& path, bool populate);
   void release();
   uint8_t* data_ = nullptr;
   size_t size_ = 0;

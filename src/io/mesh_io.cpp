@@ -55,11 +55,14 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool avera
 mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& options) {
   const Format format = formatOf(path);
   if (format != Format::Pvtu && format != Format::Series) checkNoPieces(path, options);
+  // One step of a file of many (a stream's first) touches a small part of it: its pages are mapped
+  // as they are read instead of all up front.
+  const OpenFile open = options.step ? &FileBytes::openLazily : &FileBytes::open;
   switch (format) {
     case Format::Vtu:
-      return readVtu(FileBytes::open(path), path, options);
+      return readVtu(open(path), path, options);
     case Format::Pvtu:
-      return readPvtu(path, options);
+      return readPvtu(path, options, open);
     case Format::LegacyVtk:
       return readLegacyVtk(FileBytes::open(path), path, options);
     case Format::Ugrid:

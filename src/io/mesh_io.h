@@ -45,6 +45,9 @@ struct ReadOptions {
   // no cellFields). False: it is left in mesh.cellFields, for a caller that has read only some of
   // a .pvtu's pieces to average with the help of the ranks holding the others.
   bool cellDataOnPoints = true;
+  // .vtu, .pvtu and series of them: record where each element came from (mesh.cellOrigin), so
+  // that later steps of cell data can be read alone (readCellFieldStep).
+  bool cellOrigins = false;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});
@@ -106,6 +109,17 @@ bool asksForCellData(const std::string& path, const ReadOptions& options);
 std::vector<float> readFieldStep(const std::string& path, const std::string& field, uint64_t step,
                                  const ReadOptions& options = {},
                                  std::span<const uint32_t> pointMap = {});
+
+// Step `step` of cell data `field` (as ReadOptions::fields names it), without the mesh: only that
+// cell array is decoded, from .vtu and .pvtu files (the pieces in options.pieces) and series of
+// them. Values come in the order of the cells of the pieces read, numbered one after another
+// (skipped cells included); when `cellMap` is not empty, value i is that of cell cellMap[i]. Pass
+// the cell origins of the mesh readMesh(path, options with cellOrigins) returned to get one value
+// per element of that mesh, type by type. Throws sm::FileError naming the file and the array for a
+// field or step that is not there, a field held as point data, and damaged or truncated data.
+std::vector<float> readCellFieldStep(const std::string& path, const std::string& field,
+                                     uint64_t step, const ReadOptions& options = {},
+                                     std::span<const uint32_t> cellMap = {});
 
 struct WriteOptions {
   bool compress = true;  // zlib-compressed appended raw data

@@ -289,17 +289,37 @@ std::vector<FieldStepCount> seriesFieldSteps(const std::string& path, const Read
   return first.fields;
 }
 
-std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
-                                   const ReadOptions& options, std::span<const uint32_t> pointMap) {
-  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+namespace {
+
+// Step `step`'s file, its sizes checked again from its headers (every step's headers were checked
+// when the series was listed, io::listFieldSteps), so that a step replaced since reads as an
+// error.
+const SeriesStep& checkedStepFile(const std::string& path, const std::string& field, uint64_t step,
+                                  const ReadOptions& options,
+                                  const std::vector<SeriesStep>& steps) {
   if (step >= steps.size())
     throw FileError(path, "field '", field, "' has ", steps.size(), " time steps (0 .. ",
                     steps.size() - 1, "), not step ", step);
-  // Every step's headers were checked when the series was listed (io::listFieldSteps); its sizes
-  // are checked again (headers only), so that a step replaced since reads as an error.
   if (step > 0 && readsStepsAlone(steps[step].file))
     checkSameSizes(path, steps, step, options, declaredSizes(steps[0].file, options));
-  return readFieldStep(steps[step].file, field, 0, options, pointMap);
+  return steps[step];
+}
+
+}  // namespace
+
+std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
+                                   const ReadOptions& options, std::span<const uint32_t> pointMap) {
+  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  return readFieldStep(checkedStepFile(path, field, step, options, steps).file, field, 0, options,
+                       pointMap);
+}
+
+std::vector<float> seriesCellFieldStep(const std::string& path, const std::string& field,
+                                       uint64_t step, const ReadOptions& options,
+                                       std::span<const uint32_t> cellMap) {
+  const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  return readCellFieldStep(checkedStepFile(path, field, step, options, steps).file, field, 0,
+                           options, cellMap);
 }
 
 }  // namespace sm::io

@@ -33,9 +33,12 @@ using ReadStepFile =
 mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& options,
                                   const ReadStepFile& readStep);
 
-// listFieldSteps and readFieldStep for a series.
+// listFieldSteps, readFieldStep and readCellFieldStep for a series.
 std::vector<FieldStepCount> seriesFieldSteps(const std::string& path, const ReadOptions& options);
 std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
                                    const ReadOptions& options, std::span<const uint32_t> pointMap);
+std::vector<float> seriesCellFieldStep(const std::string& path, const std::string& field,
+                                       uint64_t step, const ReadOptions& options,
+                                       std::span<const uint32_t> cellMap);
 
 }  // namespace sm::io

@@ -37,6 +37,11 @@ class VtuReader {
 
   mesh::UnstructuredMesh read() {
     findPieces();
+    if (options_.cellOrigins) {
+      uint64_t fileCells = 0;
+      for (const Piece& p : pieces_) fileCells += p.numCells;
+      builder_.keepCellOrigins(fileCells);
+    }
     cellArrays_ = dataCellArrays(vtuCellArrayNames(pieces_[0]), options_);
     builder_.setCellArrays(cellArrays_);
     readPoints();

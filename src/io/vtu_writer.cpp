@@ -69,6 +69,10 @@ std::string arrayName(const mesh::Field& f, uint64_t s) {
   return f.numSteps() > 1 || splitStepName(f.name).step ? concat(f.name, "@t", s) : f.name;
 }
 
+std::string arrayName(const mesh::CellField& f, uint64_t s) {
+  return f.steps.size() > 1 || splitStepName(f.name).step ? concat(f.name, "@t", s) : f.name;
+}
+
 // An array of `count` values of T; fill(first, n, out) writes values [first, first + n).
 template <class T>
 OutArray makeArray(std::string parent, std::string attributes, uint64_t count,
@@ -138,6 +142,20 @@ void addCellArrays(std::vector<OutArray>& out, const mesh::UnstructuredMesh& m) 
                                        o[c - b] = m.clusters[t][c - r->firstCell[t]];
                                      }
                                    }));
+  // Cell data, written in the cells' order (type after type), one array per step.
+  for (const mesh::CellField& f : m.cellFields)
+    for (uint64_t s = 0; s < f.steps.size(); ++s) {
+      const auto* perType = &f.steps[s];
+      for (int t = 0; t < mesh::kNumCellTypes; ++t)
+        SM_CHECK_EQ((*perType)[t].size(), m.numCells(mesh::kAllCellTypes[t]));
+      out.push_back(makeArray<float>("CellData", dataArray("Float32", arrayName(f, s)), nCells,
+                                     [perType, r](uint64_t b, uint64_t n, float* o) {
+                                       for (uint64_t c = b; c < b + n; ++c) {
+                                         int t = r->typeOfCell(c);
+                                         o[c - b] = (*perType)[t][c - r->firstCell[t]];
+                                       }
+                                     }));
+    }
 }
 
 std::vector<OutArray> meshArrays(const mesh::UnstructuredMesh& m) {
@@ -298,6 +316,13 @@ mesh::UnstructuredMesh extractPiece(
       for (uint32_t id : used) pf.steps[s].push_back(f.steps[s][id]);
     p.fields.push_back(std::move(pf));
   }
+  for (const mesh::CellField& f : m.cellFields) {
+    mesh::CellField pf{f.name, decltype(f.steps)(f.steps.size())};
+    for (size_t s = 0; s < f.steps.size(); ++s)
+      for (int t = 0; t < mesh::kNumCellTypes; ++t)
+        for (uint32_t c : cells[t]) pf.steps[s][t].push_back(f.steps[s][t][c]);
+    p.cellFields.push_back(std::move(pf));
+  }
   for (uint32_t id : used) local[id] = 0xFFFFFFFFu;  // ready for the next piece
   return p;
 }
@@ -360,9 +385,12 @@ std::string pvtuIndex(const mesh::UnstructuredMesh& mesh, const std::string& pie
     for (uint64_t s = 0; s < f.numSteps(); ++s)
       x += concat("      <PDataArray ", dataArray("Float32", arrayName(f, s)), "/>\n");
   x += "    </PPointData>\n    <PCellData>\n      <PDataArray " + dataArray("Int32", "cluster") +
-       "/>\n    </PCellData>\n    <PPoints>\n      <PDataArray " +
-       dataArray("Float64", "Points", 3) + "/>\n    </PPoints>\n" + pieces +
-       "  </PUnstructuredGrid>\n</VTKFile>\n";
+       "/>\n";
+  for (const mesh::CellField& f : mesh.cellFields)
+    for (uint64_t s = 0; s < f.steps.size(); ++s)
+      x += concat("      <PDataArray ", dataArray("Float32", arrayName(f, s)), "/>\n");
+  x += "    </PCellData>\n    <PPoints>\n      <PDataArray " + dataArray("Float64", "Points", 3) +
+       "/>\n    </PPoints>\n" + pieces + "  </PUnstructuredGrid>\n</VTKFile>\n";
   return x;
 }
 
@@ -406,7 +434,9 @@ void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
                     const WriteOptions& options) {
   const fs::path p(path);
   const std::string stem = p.stem().string();
-  const uint64_t steps = std::max<uint64_t>(1, mesh.numSteps());
+  uint64_t steps = std::max<uint64_t>(1, mesh.numSteps());
+  for (const mesh::CellField& f : mesh.cellFields)
+    steps = std::max<uint64_t>(steps, f.steps.size());
   if (!mesh.timeValues.empty() && mesh.timeValues.size() != steps)
     throw Error(path, ": the mesh has ", steps, " time steps but ", mesh.timeValues.size(),
                 " time values");
@@ -427,12 +457,18 @@ void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
   step.clusters = mesh.clusters;
   for (const mesh::Field& f : mesh.fields)
     if (f.numSteps() > 0) step.fields.push_back({f.name, {}});
+  for (const mesh::CellField& f : mesh.cellFields)
+    if (!f.steps.empty()) step.cellFields.push_back({f.name, {}});
   std::string sets;
   for (uint64_t k = 0; k < steps; ++k) {
     size_t out = 0;
     for (const mesh::Field& all : mesh.fields)
       if (all.numSteps() > 0)
         step.fields[out++].steps = {all.steps[std::min<uint64_t>(k, all.numSteps() - 1)]};
+    out = 0;
+    for (const mesh::CellField& all : mesh.cellFields)
+      if (!all.steps.empty())
+        step.cellFields[out++].steps = {all.steps[std::min<uint64_t>(k, all.steps.size() - 1)]};
     const std::string file = concat(stem, "/", stem, "_t", k, ".pvtu");
     writePvtu((p.parent_path() / file).string(), step, options);
     char time[32];  // every digit: times read back exactly

@@ -141,6 +141,32 @@ void joinCellFields(const std::string& source, std::vector<mesh::UnstructuredMes
   }
 }
 
+// Cell origins follow the cells too, each piece's numbered after the cells of the pieces before it
+// (as readCellFieldStep numbers the values of the pieces it reads). Kept only when every piece has
+// them.
+void joinCellOrigins(const std::vector<mesh::UnstructuredMesh>& pieces,
+                     mesh::UnstructuredMesh& out) {
+  for (const auto& p : pieces)
+    if (p.cellOrigin.size() != p.numCells()) return;
+  uint64_t total = 0;
+  for (const auto& p : pieces) total += p.fileCells;
+  if (total > 0xFFFFFFFFull)
+    throw FileError(out.source, "the pieces hold ", total,
+                    " cells, more than 2^32 - 1 to stream cell data of");
+  out.fileCells = total;
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    uint64_t offset = 0;
+    for (const auto& p : pieces) {
+      uint64_t first = 0;  // p's elements of the types before t
+      for (int u = 0; u < t; ++u) first += p.numCells(mesh::kAllCellTypes[u]);
+      const uint64_t n = p.numCells(mesh::kAllCellTypes[t]);
+      for (uint64_t i = 0; i < n; ++i)
+        out.cellOrigin.push_back(uint32_t(offset + p.cellOrigin[first + i]));
+      offset += p.fileCells;
+    }
+  }
+}
+
 }  // namespace
 
 mesh::UnstructuredMesh weldPieces(const std::string& source,
@@ -155,6 +181,7 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
   Welding w = weldPoints(pieces);
   weldFields(source, pieces, w, out);
   joinCellFields(source, pieces, out);
+  joinCellOrigins(pieces, out);
   for (auto& p : pieces) {  // no longer needed: free them before the cells are copied
     std::vector<glm::dvec3>().swap(p.points);
     std::vector<mesh::Field>().swap(p.fields);

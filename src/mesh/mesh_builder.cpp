@@ -271,7 +271,20 @@ void MeshBuilder::renumberSparseClusters(const std::string& arrayName) {
             largest, "; renumbered 0 .. ", ids.size() - 1, " in the same order");
 }
 
+void MeshBuilder::keepCellOrigins(uint64_t fileCells) {
+  // Origins are 32-bit, like vertex ids: one rank's pieces never hold more cells.
+  if (fileCells > 0xFFFFFFFFull)
+    throw FileError(source_, "has ", fileCells,
+                    " cells, more than 2^32 - 1 to stream cell data of");
+  fileCells_ = fileCells;
+}
+
 UnstructuredMesh MeshBuilder::finish() {
+  if (fileCells_) {
+    mesh_.fileCells = *fileCells_;
+    for (const auto& fileCells : fileCellOf_)
+      for (uint64_t c : fileCells) mesh_.cellOrigin.push_back(uint32_t(c));
+  }
   for (const auto& f : mesh_.fields) {
     uint64_t nonFinite = 0, firstPoint = 0, firstStep = 0;
     for (uint64_t s = 0; s < f.steps.size(); ++s) {

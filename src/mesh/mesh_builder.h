@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ class MeshBuilder {
   // ids far above the cell count are renumbered densely, in order (renumberSparseClusters).
   void setClusterIds(std::span<const int64_t> perFileCell, const std::string& arrayName);
 
+  // Makes finish() record each kept cell's file cell number (UnstructuredMesh::cellOrigin), the
+  // file having `fileCells` cells in all.
+  void keepCellOrigins(uint64_t fileCells);
+
   // Checks fields for missing steps, prints one warning per kind of fix or skip, returns the mesh.
   UnstructuredMesh finish();
 
@@ -55,6 +60,7 @@ class MeshBuilder {
   UnstructuredMesh mesh_;
   // File cell number of every kept cell, per type, so that cell arrays (clusters) can be applied.
   std::array<std::vector<uint64_t>, kNumCellTypes> fileCellOf_;
+  std::optional<uint64_t> fileCells_;  // set: keep the cells' origins
   uint64_t firstInvertedCell_ = 0;
   uint64_t degenerate_ = 0;
   uint64_t firstDegenerateCell_ = 0;

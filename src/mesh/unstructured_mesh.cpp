@@ -129,6 +129,8 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
   }
   a.points.insert(a.points.end(), b.points.begin(), b.points.end());
   a.pointOrigin.clear();  // the points of a and b may come from different reads
+  a.cellOrigin.clear();
+  a.fileCells = 0;
   for (int t = 0; t < kNumCellTypes; ++t) {
     a.cells[t].reserve(a.cells[t].size() + b.cells[t].size());
     for (uint32_t id : b.cells[t]) a.cells[t].push_back(static_cast<uint32_t>(id + offset));
@@ -190,6 +192,26 @@ void cellFieldsToPoints(UnstructuredMesh& m) {
     m.fields.push_back(std::move(f));
   }
   m.cellFields.clear();
+}
+
+void pointFieldsToCells(UnstructuredMesh& m) {
+  for (Field& f : m.fields) {
+    CellField cf{f.name, decltype(cf.steps)(f.steps.size())};
+    for (size_t s = 0; s < f.steps.size(); ++s)
+      for (int t = 0; t < kNumCellTypes; ++t) {
+        const uint32_t nv = numVerts(kAllCellTypes[t]);
+        const std::vector<uint32_t>& ids = m.cells[t];
+        std::vector<float>& out = cf.steps[s][t];
+        out.reserve(ids.size() / nv);
+        for (size_t i = 0; i < ids.size(); i += nv) {
+          double sum = 0;
+          for (uint32_t k = 0; k < nv; ++k) sum += f.steps[s][ids[i + k]];
+          out.push_back(float(sum / nv));
+        }
+      }
+    m.cellFields.push_back(std::move(cf));
+  }
+  m.fields.clear();
 }
 
 }  // namespace sm::mesh

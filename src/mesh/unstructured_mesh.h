@@ -74,6 +74,12 @@ struct UnstructuredMesh {
   // their points numbered one after another, so that a later time step can be read without the
   // points (io::readFieldStep). Empty where the points are the file's own, in its order.
   std::vector<uint32_t> pointOrigin;
+  // Kept only when a reader is asked (io::ReadOptions::cellOrigins): element i, counted type by
+  // type in the order of `cells`, is cell cellOrigin[i] of the files read, their cells (skipped
+  // ones included) numbered one after another; fileCells is how many there are. A later step of
+  // cell data is then read without the cells (io::readCellFieldStep).
+  std::vector<uint32_t> cellOrigin;
+  uint64_t fileCells = 0;
 
   uint64_t numPoints() const { return points.size(); }
   uint64_t numCells(CellType t) const { return cells[typeIndex(t)].size() / numVerts(t); }
@@ -104,6 +110,11 @@ void cellFieldsToPoints(UnstructuredMesh& m);
 std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m);
 std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step);
 std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses);
+
+// The other way (VTK's Point Data to Cell Data): every point field becomes a cell field of the same
+// name, each element taking the mean of its vertices' values. Test meshes use it to stand for a
+// finite-volume solver's output.
+void pointFieldsToCells(UnstructuredMesh& m);
 
 // Appends `b` to `a` (vertex ids of b shifted); fields must match by name and step count.
 void append(UnstructuredMesh& a, const UnstructuredMesh& b);

@@ -189,6 +189,8 @@ std::vector<std::vector<double>> canonicalCells(const mesh::UnstructuredMesh& m)
         for (const auto& f : m.fields)
           for (const auto& s : f.steps) r.push_back(s[id]);
       }
+      for (const auto& f : m.cellFields)
+        for (const auto& s : f.steps) r.push_back(s[mesh::typeIndex(t)][c]);
       out.push_back(std::move(r));
     }
   }

@@ -25,8 +25,8 @@ void expectFixtureGeometry(const mesh::UnstructuredMesh& m);  // points, cells, 
 // "f" (1 step) and "g" (2 steps) and time values 0 and 1.
 mesh::UnstructuredMesh makeTestMesh(int n, int clusters);
 
-// Cells as sortable records (type, cluster, vertex coordinates, field values at the vertices), so
-// that meshes equal up to point and cell order compare equal.
+// Cells as sortable records (type, cluster, vertex coordinates, field values at the vertices, cell
+// data), so that meshes equal up to point and cell order compare equal.
 std::vector<std::vector<double>> canonicalCells(const mesh::UnstructuredMesh& m);
 
 // Every element has positive volume (the builder oriented them all).

@@ -91,6 +91,46 @@ TEST(PvtuWriter, OnePiecePerClusterEachWithOnlyItsPoints) {
   EXPECT_TRUE(tempFiles(dir).empty());
 }
 
+// Cell data written (a test mesh's fields as cell data: generate --cell-data) reads back element
+// for element, from one file, from pieces and from a series of them.
+TEST(PvtuWriter, CellDataRoundTrips) {
+  const std::string dir = sm::test::outputDir("PvtuWriter.CellData");
+  mesh::UnstructuredMesh m = test::makeTestMesh(6, 3);
+  const mesh::UnstructuredMesh points = m;
+  mesh::pointFieldsToCells(m);
+  ASSERT_TRUE(m.fields.empty());
+  ASSERT_EQ(m.cellFields.size(), 2u);  // f with one step, g with two
+  ASSERT_EQ(m.cellFields[1].steps.size(), 2u);
+  // Each element holds the mean of its vertices' values (a known answer, element by element).
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    for (size_t c = 0; c < m.clusters[t].size(); ++c) {
+      double sum = 0;
+      for (uint32_t k = 0; k < nv; ++k)
+        sum += points.fields[1].steps[1][points.cells[t][c * nv + k]];
+      EXPECT_EQ(m.cellFields[1].steps[1][t][c], float(sum / nv)) << "type " << t << " cell " << c;
+    }
+  }
+  ReadOptions cells;
+  cells.fields = {"f", "g"};
+  cells.cellDataOnPoints = false;
+  writeVtu(dir + "/c.vtu", m);
+  writePvtu(dir + "/c.pvtu", m);
+  for (const char* file : {"/c.vtu", "/c.pvtu"}) {
+    SCOPED_TRACE(file);
+    const mesh::UnstructuredMesh r = readMesh(dir + file, cells);
+    ASSERT_EQ(r.cellFields.size(), 2u);
+    EXPECT_EQ(test::canonicalCells(r), test::canonicalCells(m));
+  }
+  // A series: a .pvtu per step, each holding that step of every field (f's only step repeats).
+  writePvdSeries(dir + "/c.pvd", m);
+  cells.fields = {"g"};
+  const mesh::UnstructuredMesh r = readMesh(dir + "/c.pvd", cells);
+  mesh::UnstructuredMesh onlyG = m;
+  onlyG.cellFields.erase(onlyG.cellFields.begin());
+  EXPECT_EQ(test::canonicalCells(r), test::canonicalCells(onlyG));
+}
+
 TEST(PvtuWriter, EmptyMeshGivesOneEmptyPiece) {
   const std::string dir = sm::test::outputDir("PvtuWriter.Empty");
   writePvtu(dir + "/empty.pvtu", mesh::UnstructuredMesh{});
@@ -141,6 +181,10 @@ TEST(PvtuWriter, VtkReadsOurFiles) {
   mesh::UnstructuredMesh m = test::makeTestMesh(6, 3);
   for (auto& c : m.clusters)  // clusters 0, 1, 3: piece 2 is empty
     for (int32_t& id : c) id = id == 2 ? 3 : id;
+  mesh::CellField c{"c", {{}}};  // cell data: 2 cluster + 0.5
+  for (int t = 0; t < mesh::kNumCellTypes; ++t)
+    for (int32_t id : m.clusters[t]) c.steps[0][t].push_back(2.0f * float(id) + 0.5f);
+  m.cellFields.push_back(std::move(c));
   writePvtu(dir + "/vtk.pvtu", m, {true});
   writeVtu(dir + "/vtk.vtu", m, {false});
   const std::string script = dir + "/check.py";
@@ -161,6 +205,7 @@ for path in sys.argv[1:3]:
         "points": g.GetNumberOfPoints(), "types": types,
         "arrays": {pd.GetArrayName(i): list(pd.GetArray(i).GetRange()) for i in range(pd.GetNumberOfArrays())},
         "cluster": list(g.GetCellData().GetArray("cluster").GetRange()),
+        "c": list(g.GetCellData().GetArray("c").GetRange()),
         "time": [g.GetFieldData().GetArray("TimeValues").GetValue(i) for i in range(2)],
         "bounds": list(g.GetBounds())}
 out["messages"] = log.GetOutput()
@@ -196,6 +241,7 @@ json.dump(out, open(sys.argv[3], "w"))
     EXPECT_EQ(r["types"]["13"], m.numCells(CellType::Wedge));
     EXPECT_EQ(r["types"]["12"], m.numCells(CellType::Hex));
     EXPECT_EQ(r["cluster"], (std::vector<double>{0, 3}));
+    EXPECT_EQ(r["c"], (std::vector<double>{0.5, 6.5}));
     EXPECT_EQ(r["time"], (std::vector<double>{0, 1}));
     const mesh::Range f = mesh::fieldRange(*m.findField("f"));
     EXPECT_EQ(r["arrays"]["f"], (std::vector<double>{f.lo, f.hi}));
