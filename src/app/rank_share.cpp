@@ -5,6 +5,7 @@
 
 #include "app/cell_data_share.h"
 #include "app/piece_agreement.h"
+#include "common/check.h"
 #include "common/error.h"
 #include "common/log.h"
 #include "partition/partition.h"
@@ -66,6 +67,34 @@ std::string describePointFields(const RankShare& s) {
   return text.empty() ? "no point fields" : text;
 }
 
+// Flattens step 0 of a streamed cell field (type after type, as CellAverager takes values) and
+// averages it onto the points over all ranks (collective: a rank without pieces takes part with no
+// cells). Later steps are averaged by the same averager, whose first call found the shared points.
+void averageFirstCellStep(RankShare& s, const std::string& field, Collectives& coll) {
+  mesh::UnstructuredMesh& m = s.mesh;
+  s.stream->cells = std::make_shared<border::CellAverager>(m);
+  std::vector<float> values;
+  values.reserve(m.numCells());
+  for (const mesh::CellField& f : m.cellFields)
+    if (f.name == field && !f.steps.empty())
+      for (const std::vector<float>& perType : f.steps[0])
+        values.insert(values.end(), perType.begin(), perType.end());
+  std::vector<float> points = s.stream->cells->toPoints(values, coll);
+  if (coll.rank() == 0)
+    log::info(m.source, ": cell data '", field,
+              "' is streamed: one step in memory, averaged onto the points over all ranks when its "
+              "frame comes");
+  if (!m.cellFields.empty()) m.fields.push_back({field, {std::move(points)}});
+  m.cellFields.clear();
+}
+
+// Reading options for a streamed share whose field is cell data: step 0's cell values stay with
+// the cells, and where each came from is kept, for the later steps.
+void readCellsAlone(io::ReadOptions& read) {
+  read.cellDataOnPoints = false;
+  read.cellOrigins = true;
+}
+
 // cellData: the field asked for is cell data, averaged onto the points with the other ranks' help
 // (a point between two ranks' pieces takes the cells of both).
 RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellData,
@@ -85,17 +114,25 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
       read = streamRead(path, mine, *s.stream);
     }
     read.cellDataOnPoints = !cellData;
+    if (s.stream && cellData) readCellsAlone(read);
     s.mesh = io::readMesh(path, read);
-    if (s.stream) s.stream->filePoints = std::move(s.mesh.pointOrigin);
+    if (s.stream) {
+      s.stream->filePoints = std::move(s.mesh.pointOrigin);
+      s.stream->fileCells = std::move(s.mesh.cellOrigin);
+    }
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
   // One rank reading every piece refuses pieces whose point fields differ (io::listFieldSteps);
-  // ranks reading some each must come to the same answer.
+  // ranks reading some each must come to the same answer. (A stream of cell data lists the one
+  // cell field asked for.)
   if (coll.size() > 1)
-    checkPiecesAgree(path, "point fields", describePointFields(s), !s.clusters.empty(),
-                     pieceNames(path, s), coll);
-  if (cellData) cellDataToPointsOverRanks(s.mesh, !s.clusters.empty(), pieceNames(path, s), coll);
+    checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields",
+                     describePointFields(s), !s.clusters.empty(), pieceNames(path, s), coll);
+  if (cellData && s.stream)
+    averageFirstCellStep(s, o.read.fields.at(0), coll);
+  else if (cellData)
+    cellDataToPointsOverRanks(s.mesh, !s.clusters.empty(), pieceNames(path, s), coll);
   return s;
 }
 
@@ -107,10 +144,16 @@ std::vector<uint32_t> composePointMaps(const std::vector<uint32_t>& base,
   return extracted;
 }
 
-RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives& coll) {
+RankShare readWhole(const std::string& path, const ShareOptions& o, bool cellData,
+                    Collectives& coll) {
   RankShare s;
   io::ReadOptions read = o.read;
   if (o.streamSteps && io::readsStepsAlone(path)) read = streamRead(path, o, s.stream.emplace());
+  // Streamed cell data needs the whole mesh on one rank (loadRankShare): the averages then need
+  // no other rank.
+  const bool streamCells = s.stream && cellData;
+  SM_CHECK(!streamCells || coll.size() == 1);
+  if (streamCells) readCellsAlone(read);
   mesh::UnstructuredMesh whole = io::readMesh(path, read);
   if (o.metisClusters > 0) partition::assignMetisClusters(whole, o.metisClusters);
   std::vector<uint64_t> sizes = partition::clusterSizes(whole);
@@ -118,8 +161,12 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, Collectives&
   s.totalClusters = int(sizes.size());
   s.clusters = clustersOfRank(toRank, coll.rank());
   if (coll.size() == 1) {
-    if (s.stream) s.stream->filePoints = std::move(whole.pointOrigin);
+    if (s.stream) {
+      s.stream->filePoints = std::move(whole.pointOrigin);
+      s.stream->fileCells = std::move(whole.cellOrigin);
+    }
     s.mesh = std::move(whole);
+    if (streamCells) averageFirstCellStep(s, o.read.fields.at(0), coll);
   } else {
     partition::ExtractedClusters mine = partition::extractClustersWithPointMap(whole, s.clusters);
     if (s.stream)
@@ -141,13 +188,17 @@ bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Col
 }
 
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
-  // Cell data is averaged onto the points with every step in memory (no streaming): each step's
-  // means need the other ranks' sums at the points they share.
+  // Cell data is streamed when each rank averages its own elements' values with the other ranks'
+  // sums at the points they share (its pieces, or the whole mesh on one rank), one field at a
+  // time; a whole mesh split among ranks after reading keeps every step in memory.
   const bool cellData = o.cellData ? *o.cellData : fieldsAreCellData(path, o.read, coll);
-  ShareOptions reading = o;
-  reading.streamSteps = o.streamSteps && !cellData;
   const bool pieces = io::readsByPiece(path) && o.metisClusters == 0;
-  RankShare s = pieces ? readPieces(path, reading, cellData, coll) : readWhole(path, reading, coll);
+  ShareOptions reading = o;
+  if (cellData)
+    reading.streamSteps = o.streamSteps && o.read.fields.size() == 1 && io::readsStepsAlone(path) &&
+                          (pieces || coll.size() == 1);
+  RankShare s =
+      pieces ? readPieces(path, reading, cellData, coll) : readWhole(path, reading, cellData, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);
   render::ElementSizeSum local = render::elementSizeSum(s.mesh);
   s.elementSize.sum = coll.sum(local.sum);

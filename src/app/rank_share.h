@@ -2,11 +2,13 @@
 // and what every rank must agree on (global bounds, ranges, element size).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/collectives.h"
+#include "border/cell_averager.h"
 #include "io/mesh_io.h"
 #include "mesh/unstructured_mesh.h"
 #include "render/frame_defaults.h"
@@ -17,7 +19,9 @@ struct ShareOptions {
   io::ReadOptions read;
   int metisClusters = 0;  // > 0: split into this many clusters with METIS (ignores file clusters)
   // Keep one time step in memory and read the others from the file when they are needed (.vtu and
-  // .pvtu; other formats are loaded whole, every step in memory).
+  // .pvtu and series of them; other formats are loaded whole, every step in memory). Cell data is
+  // streamed too when one field is asked for and each rank reads its own pieces (or one rank
+  // reads the whole file).
   bool streamSteps = false;
   // Whether read.fields names cell data, when the caller has asked fieldsAreCellData already
   // (unset: loadRankShare asks, one header read and one collective).
@@ -25,11 +29,15 @@ struct ShareOptions {
 };
 
 // How a streamed share reads its other steps: io::readFieldStep(path, field, step, read,
-// filePoints) gives them in the order of the share's mesh.
+// filePoints) gives them in the order of the share's mesh. Cell data comes from
+// io::readCellFieldStep(path, field, step, read, fileCells), averaged onto the points by `cells`
+// with every rank's help (collective).
 struct StepStream {
   io::ReadOptions read;
-  std::vector<uint32_t> filePoints;            // empty: the file's points, in order
-  std::vector<io::FieldStepCount> fieldSteps;  // of this rank's clusters
+  std::vector<uint32_t> filePoints;             // empty: the file's points, in order
+  std::vector<io::FieldStepCount> fieldSteps;   // of this rank's clusters
+  std::vector<uint32_t> fileCells;              // cell data: UnstructuredMesh::cellOrigin
+  std::shared_ptr<border::CellAverager> cells;  // set when the field streamed is cell data
 };
 
 struct RankShare {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 
@@ -95,24 +96,71 @@ void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
   }
 }
 
+// Loads the scalars of frames' steps, now or ahead of the frame, through the prefetcher. A
+// collective source (streamed cell data) reads its next step's cells ahead on a thread of its own;
+// averaging them onto the points takes every rank, so it runs when the frame starts.
+class FrameLoads {
+ public:
+  explicit FrameLoads(const Frames& f) : f_(f), prefetcher_(f.gpu) {}
+
+  // Before a frame of `step`, which a prefetch loaded, or which is loaded now.
+  render::ScalarSwitch loadFor(uint64_t step) {
+    if (prefetcher_.pending()) return prefetcher_.swap();
+    if (!cellsAhead_.valid()) return prefetcher_.loadNow(load(step, 0));
+    Timer wait;
+    CellsRead ahead = cellsAhead_.get();
+    const double waitMs = wait.ms();
+    render::ScalarSwitch s =
+        prefetcher_.loadNow([&] { return f_.source.scalarsFromCells(f_.rank, ahead.values); });
+    // The read ran during the frame before; the averaging, gather and upload did not.
+    s.waitMs += waitMs;
+    s.loadMs += ahead.ms;
+    s.prefetched = true;
+    return s;
+  }
+  // While a frame renders, the next one's step (one thread, leaving the cores to the frame).
+  void prefetch(uint64_t step) {
+    if (!f_.source.collective()) {
+      prefetcher_.prefetch(load(step, 1));
+      return;
+    }
+    cellsAhead_ = std::async(std::launch::async, [&source = f_.source, &field = f_.field, step] {
+      Timer t;
+      CellsRead r{source.readCells(field, step, 1), 0.0};
+      r.ms = t.ms();
+      return r;
+    });
+  }
+
+ private:
+  struct CellsRead {
+    std::vector<float> values;
+    double ms;
+  };
+
+  render::ScalarPrefetcher::Load load(uint64_t step, unsigned threads) const {
+    return [&source = f_.source, &rank = f_.rank, &field = f_.field, step, threads] {
+      return source.scalars(rank, field, step, threads);
+    };
+  }
+
+  const Frames& f_;
+  render::ScalarPrefetcher prefetcher_;
+  std::future<CellsRead> cellsAhead_;
+};
+
 // Renders the steps job.repeat times. Each frame's scalars were read and uploaded while the frame
 // before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
 // a frame whose step is the one shown already (one step rendered repeatedly) loads nothing.
 void renderFrames(const Frames& f) {
   const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
   auto stepOf = [&](size_t i) { return f.steps[i % perRun]; };
-  // A prefetch has a whole frame to finish: one thread, leaving the cores to the frame.
-  auto load = [&](size_t i, unsigned threads) -> render::ScalarPrefetcher::Load {
-    return [&source = f.source, &rank = f.rank, &field = f.field, step = stepOf(i), threads] {
-      return source.scalars(rank, field, step, threads);
-    };
-  };
   SequenceStats stats(f.job.repeat, f.job.prefetch);
-  render::ScalarPrefetcher prefetcher(f.gpu);
+  FrameLoads loads(f);
   std::optional<uint64_t> shown;  // the step whose scalars frames read
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
-    prefetcher.loadNow(load(0, 0));
+    loads.loadFor(stepOf(0));
     shown = stepOf(0);
     f.renderer.render(f.settings);
   }
@@ -120,13 +168,10 @@ void renderFrames(const Frames& f) {
     fault::atFrame(i);
     Timer frameTimer;
     render::ScalarSwitch scalars;
-    if (prefetcher.pending())
-      scalars = prefetcher.swap();
-    else if (shown != stepOf(i))
-      scalars = prefetcher.loadNow(load(i, 0));
+    if (shown != stepOf(i)) scalars = loads.loadFor(stepOf(i));
     shown = stepOf(i);
     if (f.job.prefetch && i + 1 < total && stepOf(i + 1) != stepOf(i))
-      prefetcher.prefetch(load(i + 1, 1));
+      loads.prefetch(stepOf(i + 1));
     Timer renderTimer;
     render::FrameResult frame = f.renderer.render(f.settings);
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
@@ -202,7 +247,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
   // is a field only when asked for by name.
   if (!job.field.empty()) shareOptions.read.fields = {job.field};
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
-  const StepSource source(job.mesh, share);
+  const StepSource source(job.mesh, share, coll);
   const std::string field = resolveField(job, share.mesh, coll);
   const std::vector<uint64_t> steps = stepsToRender(
       job,

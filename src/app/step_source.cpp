@@ -8,8 +8,8 @@
 
 namespace sm::app {
 
-StepSource::StepSource(const std::string& path, const RankShare& share)
-    : path_(path), share_(share), numPoints_(share.mesh.numPoints()) {}
+StepSource::StepSource(const std::string& path, const RankShare& share, Collectives& coll)
+    : path_(path), share_(share), coll_(coll), numPoints_(share.mesh.numPoints()) {}
 
 uint64_t StepSource::numSteps(const std::string& field) const {
   if (share_.stream) {
@@ -21,9 +21,31 @@ uint64_t StepSource::numSteps(const std::string& field) const {
   return f ? f->numSteps() : 0;
 }
 
+std::vector<float> StepSource::readCells(const std::string& field, uint64_t step,
+                                         unsigned threads) const {
+  const StepStream& s = *share_.stream;
+  const uint64_t cells = s.cells->numCells();
+  if (cells == 0) return {};  // a rank without pieces reads nothing (but averages, collectively)
+  io::ReadOptions o = s.read;
+  if (threads) o.threads = threads;
+  std::vector<float> v = io::readCellFieldStep(path_, field, step, o, s.fileCells);
+  if (v.size() != cells)  // the file changed since it was loaded
+    throw FileError(path_, "cell data '", field, "' step ", step, " has ", v.size(), " values for ",
+                    cells, " cells");
+  return v;
+}
+
+std::vector<float> StepSource::scalarsFromCells(const prep::PreparedRank& rank,
+                                                std::span<const float> cells) const {
+  std::vector<float> points = share_.stream->cells->toPoints(cells, coll_);
+  if (rank.numVertices() == 0) return {};
+  return prep::gatherScalars(rank, points);
+}
+
 std::vector<float> StepSource::read(const std::string& field, uint64_t step,
                                     unsigned threads) const {
   const StepStream& s = *share_.stream;
+  if (s.cells) return s.cells->toPoints(readCells(field, step, threads), coll_);
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
   std::vector<float> v = io::readFieldStep(path_, field, step, o, s.filePoints);
@@ -34,6 +56,12 @@ std::vector<float> StepSource::read(const std::string& field, uint64_t step,
 }
 
 mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
+  if (collective()) {  // every rank takes part, with or without points
+    mesh::Range r;
+    for (float v : read(field, step))
+      if (std::isfinite(v)) r.extend(v);
+    return r;
+  }
   if (numPoints_ == 0 || step >= numSteps(field)) return {};
   if (!share_.stream) return mesh::fieldRange(*share_.mesh.findField(field), step);
   mesh::Range r;
@@ -44,6 +72,7 @@ mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
 
 std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std::string& field,
                                        uint64_t step, unsigned threads) const {
+  if (collective()) return scalarsFromCells(rank, readCells(field, step, threads));
   if (rank.numVertices() == 0) return {};
   const uint64_t n = numSteps(field);
   if (n == 0) {

@@ -1,9 +1,11 @@
 // Where a rank's field steps come from while it renders a sequence: the file, one step at a time
 // (a streamed share, see RankShare::stream), or the mesh in memory. Steps are handed out in the
-// prepared vertex order, ready for the GPU.
+// prepared vertex order, ready for the GPU. A streamed cell field is averaged onto the points with
+// every rank's help: its steps are collective (collective()).
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,11 +16,17 @@ namespace sm::app {
 
 class StepSource {
  public:
-  // Call before preparation takes the points out of share.mesh; `share` must outlive the source.
-  StepSource(const std::string& path, const RankShare& share);
+  // Call before preparation takes the points out of share.mesh; `share` and `coll` must outlive
+  // the source.
+  StepSource(const std::string& path, const RankShare& share, Collectives& coll);
 
   // Steps of `field` on this rank (0 when its clusters lack the field).
   uint64_t numSteps(const std::string& field) const;
+  // True when range() and scalars() are collective (a streamed cell field): every rank calls them
+  // for the same steps in the same order, on the thread that makes MPI calls. The file reads can
+  // run ahead on another thread: scalarsFromCells(rank, readCells(field, step)) is scalars().
+  bool collective() const { return share_.stream && share_.stream->cells; }
+
   // Range of one step over this rank's points (empty when it lacks the field or the step).
   mesh::Range range(const std::string& field, uint64_t step) const;
   // One step in `rank`'s vertex order (empty for a rank without vertices); throws naming --field
@@ -28,11 +36,18 @@ class StepSource {
   std::vector<float> scalars(const prep::PreparedRank& rank, const std::string& field,
                              uint64_t step, unsigned threads = 0) const;
 
+  // A streamed cell field's step, one value per element of this rank (file reads only: any
+  // thread), and the collective rest of scalars().
+  std::vector<float> readCells(const std::string& field, uint64_t step, unsigned threads = 0) const;
+  std::vector<float> scalarsFromCells(const prep::PreparedRank& rank,
+                                      std::span<const float> cells) const;
+
  private:
   std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0) const;
 
   std::string path_;
   const RankShare& share_;
+  Collectives& coll_;
   uint64_t numPoints_;
 };
 

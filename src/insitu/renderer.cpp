@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "cell_fields.h"
+#include "border/cell_averager.h"
 #include "common/error.h"
 #include "common/hash.h"
 #include "common/timer.h"
@@ -53,7 +53,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   std::unique_ptr<sm::comp::DeepCompositor> compositor;
   std::unique_ptr<sm::render::Renderer> renderer;
   FieldStore fields;
-  sm::insitu::CellFields cellFields;
+  sm::border::CellAverager cellFields;
   MeshFrame frame;
   uint64_t localElements = 0;
   uint64_t retiredBuilds = 0, retiredUploads = 0;  // of scenes replaced by a later setMesh
@@ -69,7 +69,7 @@ void Renderer::Impl::releaseMesh() {
   }
   scene.reset();
   fields = FieldStore();
-  cellFields = sm::insitu::CellFields();
+  cellFields = sm::border::CellAverager();
 }
 
 MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
@@ -89,7 +89,7 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
 
 void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds) {
   const uint64_t inputVertices = m.numPoints();  // preparation takes the points out of m
-  cellFields = sm::insitu::CellFields(m, std::move(globalIds));
+  cellFields = sm::border::CellAverager(m, std::move(globalIds));
   sm::prep::PreparedRank prepared =
       sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
           .rank;

@@ -7,7 +7,7 @@ set -euo pipefail
 sm=$1 work=$2
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$work" && cd "$work"
-rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png ./*.pfm
+rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png whole.vtu series* gen gen.pvd ./*.pfm streamed-*
 
 python3 - <<'PY'
 import math, os, struct
@@ -23,7 +23,7 @@ def corners(i, j, k):
     return [(i, j, k), (i + 1, j, k), (i + 1, j + 1, k), (i, j + 1, k),
             (i, j, k + 1), (i + 1, j, k + 1), (i + 1, j + 1, k + 1), (i, j + 1, k + 1)]
 
-def vtu(path, cells, point_values=None, steps=2):
+def vtu(path, cells, point_values=None, steps=2, scale=1):
     ids, pts = {}, []
     for c in cells:
         for p in corners(*c):
@@ -34,7 +34,7 @@ def vtu(path, cells, point_values=None, steps=2):
     offsets = ' '.join(str(8 * (m + 1)) for m in range(len(cells)))
     xyz = ' '.join(num(v) for p in pts for v in point(*p))
     if point_values is None:  # c, a vector v = (c, 2c), and s with steps c, 2c (, 3c)
-        c = [cell_value(*q) for q in cells]
+        c = [scale * cell_value(*q) for q in cells]
         series = ''.join('<DataArray type="Float32" Name="s@t%d" format="ascii">%s</DataArray>'
                          % (k, ' '.join(num((k + 1) * v) for v in c)) for k in range(steps))
         data = ('<CellData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray>'
@@ -68,6 +68,20 @@ for piece in range(3):
 # piece meets the others at faces, edges and single points, and no piece is convex.
 for piece in range(3):
     vtu('cells/checker_%d.vtu' % piece, [c for c in allcells if sum(c) % 3 == piece])
+# The same cells in one file, and a series of the interlocked pieces whose step k holds (k + 1) c
+# as c (s's step k).
+vtu('whole.vtu', allcells)
+for k in range(2):
+    for piece in range(3):
+        vtu('cells/series_%d_%d.vtu' % (k, piece), [c for c in allcells if sum(c) % 3 == piece],
+            steps=1, scale=k + 1)
+    with open('series_%d.pvtu' % k, 'w') as out:
+        out.write('<?xml version="1.0"?>\n<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>'
+                  + ''.join('<Piece Source="cells/series_%d_%d.vtu"/>' % (k, p) for p in range(3))
+                  + '</PUnstructuredGrid></VTKFile>\n')
+with open('series.pvd', 'w') as out:
+    out.write('<VTKFile type="Collection"><Collection><DataSet timestep="0" file="series_0.pvtu"/>'
+              '<DataSet timestep="1" file="series_1.pvtu"/></Collection></VTKFile>\n')
 # Pieces that disagree: the second holds three steps of s.
 vtu('cells/uneven_0.vtu', [c for c in allcells if sum(c) % 3 == 0])
 vtu('cells/uneven_1.vtu', [c for c in allcells if sum(c) % 3 != 0], steps=3)
@@ -121,6 +135,36 @@ close "cell data in interlocked pieces on 4 ranks, one without pieces" one.pfm c
 mpiexec -n 4 --oversubscribe "$sm" render checker.pvtu --field s --time 1 --view iso --size 96x96 \
   --range 1.8,5 --out steps.pfm
 close "step 1 of cell data in interlocked pieces on 4 ranks" one.pfm steps.pfm
+# Every step of cell data (--time all) is read and averaged over the ranks when its frame comes,
+# one step in memory: one file on one rank, interlocked pieces on 4 ranks (one without pieces) and
+# a series of them on 3; the same frames as the whole file on 2 ranks, which holds every step in
+# memory (a file that is not split in pieces is split after reading).
+streams() {  # streams NAME RANKS FILE FIELD: how many times the log says the cell data is streamed
+  mpiexec -n "$2" --oversubscribe "$sm" -v render "$3" --field "$4" --time all --view iso \
+    --size 96x96 --range 0.9,5 --out "streamed-$1.pfm" 2>&1 | grep -c "is streamed" || true
+}
+for case in "one 1 whole.vtu s" "pieces 4 checker.pvtu s" "series 3 series.pvd c" "memory 2 whole.vtu s"; do
+  read -r name ranks file field <<<"$case"
+  n=$(streams "$name" "$ranks" "$file" "$field")
+  want=1; [ "$name" = memory ] && want=0
+  if [ "$n" -eq "$want" ]; then echo "ok: $name: cell data streamed: $n"
+  else echo "FAIL: $name: 'is streamed' logged $n times, not $want"; fails=$((fails + 1)); fi
+done
+for k in 0 1; do
+  for name in one pieces series; do
+    close "step $k of streamed cell data ($name) as in memory" "streamed-memory_000$k.pfm" \
+      "streamed-${name}_000$k.pfm"
+  done
+done
+# generate --cell-data writes a solver-like series of cell data, which streams on 1 and 3 ranks.
+"$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 3 --steps 2 --cell-data --out gen.pvd \
+  | grep -qF "2 steps of cell data" || { echo "FAIL: generate --cell-data"; fails=$((fails + 1)); }
+for ranks in 1 3; do
+  mpiexec -n "$ranks" --oversubscribe "$sm" -v render gen.pvd --field vortex --time all \
+    --view iso --size 64x64 --out "gen$ranks.pfm" 2>&1 | grep -qF "is streamed" ||
+    { echo "FAIL: generated cell data not streamed on $ranks ranks"; fails=$((fails + 1)); }
+done
+for k in 0 1; do close "generated cell data step $k on 1 and 3 ranks" "gen1_000$k.pfm" "gen3_000$k.pfm"; done
 # Ranks whose pieces hold different steps all stop, with one message naming both.
 printf '%s' '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="cells/uneven_0.vtu"/><Piece Source="cells/uneven_1.vtu"/></PUnstructuredGrid></VTKFile>' > uneven.pvtu
 if out=$(mpiexec -n 2 --oversubscribe "$sm" render uneven.pvtu --field s --size 32x32 --out uneven.png 2>&1); then

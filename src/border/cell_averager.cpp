@@ -1,23 +1,23 @@
-#include "cell_fields.h"
+#include "border/cell_averager.h"
 
 #include <utility>
 
 #include "common/check.h"
 
-namespace sm::insitu {
+namespace sm::border {
 
-CellFields::CellFields(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds)
+CellAverager::CellAverager(const mesh::UnstructuredMesh& input, std::vector<uint64_t> globalIds)
     : globalIds_(std::move(globalIds)), numPoints_(input.numPoints()), numCells_(input.numCells()) {
-  mesh_.source = "setCellField";
+  mesh_.source = input.source;
   mesh_.points = input.points;
   mesh_.cells = input.cells;
 }
 
-void CellFields::findSharedPoints(border::RankExchange& ranks) {
+void CellAverager::findSharedPoints(RankExchange& ranks) {
   found_ = true;
   uses_ = mesh::cellUsesAtPoints(mesh_);
   if (ranks.size() > 1) {
-    border_ = std::make_unique<border::BorderExchange>(mesh_, ranks, globalIds_);
+    border_ = std::make_unique<BorderExchange>(mesh_, ranks, globalIds_);
     std::vector<std::vector<double>> columns{std::move(uses_)};
     border_->addOtherRanks(columns, ranks);
     uses_ = std::move(columns[0]);
@@ -27,8 +27,7 @@ void CellFields::findSharedPoints(border::RankExchange& ranks) {
   std::vector<uint64_t>().swap(globalIds_);
 }
 
-std::vector<float> CellFields::toPoints(std::span<const float> values,
-                                        border::RankExchange& ranks) {
+std::vector<float> CellAverager::toPoints(std::span<const float> values, RankExchange& ranks) {
   SM_CHECK_EQ(values.size(), numCells_);
   if (!found_) findSharedPoints(ranks);
   std::vector<std::vector<double>> sums(1, std::vector<double>(numPoints_, 0.0));
@@ -43,4 +42,4 @@ std::vector<float> CellFields::toPoints(std::span<const float> values,
   return mesh::meansAtPoints(sums[0], uses_);
 }
 
-}  // namespace sm::insitu
+}  // namespace sm::border
