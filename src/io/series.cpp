@@ -1,6 +1,7 @@
 #include "io/series.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
+#include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "io/file_bytes.h"
@@ -167,6 +169,20 @@ void checkStep(const std::string& path, const std::vector<SeriesStep>& steps, ui
   }
 }
 
+// One value per element, type after type, as a cell field's step holds them.
+std::array<std::vector<float>, mesh::kNumCellTypes> byType(const mesh::UnstructuredMesh& m,
+                                                           const std::vector<float>& flat) {
+  std::array<std::vector<float>, mesh::kNumCellTypes> out;
+  size_t at = 0;
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    const size_t n = m.numCells(mesh::kAllCellTypes[t]);
+    SM_CHECK_LE(at + n, flat.size());
+    out[t].assign(flat.begin() + at, flat.begin() + at + n);
+    at += n;
+  }
+  return out;
+}
+
 void appendStep(const std::string& path, uint64_t k, const SeriesStep& s, mesh::UnstructuredMesh& m,
                 mesh::UnstructuredMesh next) {
   if (next.numPoints() != m.numPoints() || next.numCells() != m.numCells())
@@ -244,27 +260,31 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
     m.timeValues = {steps[k].time};
     return m;
   }
-  mesh::UnstructuredMesh m = readStep(steps[0].file, one);
+  // Steps with headers (.vtu, .pvtu) are read array by array: each later file's arrays of the
+  // fields asked for, point data in the first file's point order and cell data in its element
+  // order (which the first read keeps), after the file's headers are checked against the first.
+  const bool byArray = readsStepsAlone(steps[0].file);
+  ReadOptions first = one;
+  first.cellOrigins = first.cellOrigins || byArray;
+  mesh::UnstructuredMesh m = readStep(steps[0].file, first);
   for (const mesh::Field& f : m.fields) checkOneStep(path, 0, steps[0], f.name, f.numSteps());
   for (const mesh::CellField& f : m.cellFields)
     checkOneStep(path, 0, steps[0], f.name, f.steps.size());
-  // Cell data (and formats without headers to go by) comes with each step's whole file; the
-  // sizes its headers declare, when it has them, are checked first all the same, since a welded
-  // total can hide pieces in another order.
-  const bool headers = readsStepsAlone(steps[0].file);
-  const bool byArray = headers && m.cellFields.empty();
-  const FirstStep first = byArray ? firstStep(path, steps, one) : FirstStep{};
-  const std::vector<DeclaredSize> firstSizes =
-      headers && !byArray ? declaredSizes(steps[0].file, one) : std::vector<DeclaredSize>{};
+  const FirstStep firstSizes = byArray ? firstStep(path, steps, one) : FirstStep{};
   for (uint64_t k = 1; k < steps.size(); ++k) {
-    if (!byArray) {
-      if (headers) checkSameSizes(path, steps, k, one, firstSizes);
+    if (!byArray) {  // formats without headers to go by: each step's whole file
       appendStep(path, k, steps[k], m, readStep(steps[k].file, one));
       continue;
     }
-    checkStep(path, steps, k, one, first);
+    checkStep(path, steps, k, one, firstSizes);
     for (mesh::Field& f : m.fields)
       f.steps.push_back(readFieldStep(steps[k].file, f.name, 0, one, m.pointOrigin));
+    for (mesh::CellField& f : m.cellFields)
+      f.steps.push_back(byType(m, readCellFieldStep(steps[k].file, f.name, 0, one, m.cellOrigin)));
+  }
+  if (!options.cellOrigins) {
+    std::vector<uint32_t>().swap(m.cellOrigin);
+    m.fileCells = 0;
   }
   m.timeValues.clear();
   for (const SeriesStep& s : steps) m.timeValues.push_back(s.time);
