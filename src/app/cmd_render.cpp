@@ -1,6 +1,6 @@
-// shellmarch render MESH --field NAME [--time T|all] [--size WxH] [camera] [transfer function]
-//                        [--step DT] [--clusters N] [--out FILE.png] [--stats] [--repeat R]
-//                        [--no-prefetch]
+// shellmarch render MESH --field NAME [--time K|A:B[:S]|t=TIME|all] [--size WxH] [camera]
+//                        [transfer function] [--step DT] [--clusters N] [--out FILE.png] [--stats]
+//                        [--repeat R] [--no-prefetch]
 #include <memory>
 
 #include "app/cli_parsers.h"
@@ -15,7 +15,9 @@ void registerRender(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a mesh to a PNG (data-parallel under mpirun)");
   auto job = std::make_shared<RenderJob>();
   auto raw = std::make_shared<SceneOptionText>();
-  addSceneOptions(cmd, *job, *raw, "Time step index, or 'all' for a numbered PNG sequence");
+  addSceneOptions(cmd, *job, *raw,
+                  "Time step K, a range FIRST:LAST[:STRIDE] or 'all' (a numbered image "
+                  "sequence), or t=TIME: the step nearest that time value");
   cmd->add_option("--out", job->out, "Output image, .png or .pfm (float) (default shellmarch.png)");
   cmd->add_option("--composite", raw->text["--composite"],
                   "deep (exact, default) or single (one fragment per rank and pixel, as IceT-style "

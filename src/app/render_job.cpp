@@ -16,6 +16,7 @@
 #include "app/render_stats.h"
 #include "app/sequence_stats.h"
 #include "app/step_source.h"
+#include "app/time_selection.h"
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/file_util.h"
@@ -30,24 +31,6 @@
 
 namespace sm::app {
 namespace {
-
-std::vector<uint64_t> stepsToRender(const RenderJob& job, uint64_t available) {
-  available = std::max<uint64_t>(available, 1);
-  if (job.time == "all") {
-    std::vector<uint64_t> all(available);
-    for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
-    return all;
-  }
-  char* end = nullptr;
-  errno = 0;
-  long long t = std::strtoll(job.time.c_str(), &end, 10);
-  if (job.time.empty() || *end || t < 0 || errno == ERANGE)
-    throw Error("--time: '", job.time, "' is not a step index or 'all'");
-  if (uint64_t(t) >= available)
-    throw Error("--time: step ", t, " does not exist (the data has ", available, " time step",
-                available == 1 ? "" : "s", ": 0 .. ", available - 1, ")");
-  return {uint64_t(t)};
-}
 
 // Range of `field` over the steps to render, over all ranks, reading one step at a time. No
 // finite value anywhere is an error: every sample would be transparent, so the image would be
@@ -249,9 +232,10 @@ void runRender(const RenderJob& job, Collectives& coll) {
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
   const StepSource source(job.mesh, share, coll);
   const std::string field = resolveField(job, share.mesh, coll);
-  const std::vector<uint64_t> steps = stepsToRender(
-      job,
-      agreedStepCount(job.mesh, field, source.numSteps(field), share.mesh.numPoints() > 0, coll));
+  const std::vector<uint64_t> steps = selectSteps(
+      job.time,
+      agreedStepCount(job.mesh, field, source.numSteps(field), share.mesh.numPoints() > 0, coll),
+      share.mesh.timeValues, coll);
   const std::pair<double, double> range =
       job.range ? *job.range : sequenceRange(job.mesh, source, field, steps, coll);
   const double loadSeconds = total.seconds();  // with the range pass over the steps

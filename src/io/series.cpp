@@ -257,7 +257,10 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
     for (const mesh::Field& f : m.fields) checkOneStep(path, k, steps[k], f.name, f.numSteps());
     for (const mesh::CellField& f : m.cellFields)
       checkOneStep(path, k, steps[k], f.name, f.steps.size());
-    m.timeValues = {steps[k].time};
+    // Every step's time, as a .vtu read for one step keeps its TimeValues: what the caller needs
+    // to tell steps by time.
+    m.timeValues.clear();
+    for (const SeriesStep& step : steps) m.timeValues.push_back(step.time);
     return m;
   }
   // Steps with headers (.vtu, .pvtu) are read array by array: each later file's arrays of the

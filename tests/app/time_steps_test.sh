@@ -76,6 +76,23 @@ for n in 1 3; do
   done
   json series$n.json "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1} and j['sequence']['prefetch']"
 done
+# --time picks steps by range and by time value (0, 1/3, 2/3, 1 here), the same frames as above;
+# a time outside the data's is refused, on 1 rank and on 3, with nothing written.
+mpi 1 "$sm" render steps.pvtu "${view[@]}" --time 1:3:2 --out range.pfm
+[ ! -e range_0002.pfm ] || fail "--time 1:3:2 rendered step 2"
+for k in 1 3; do "$diff" single_$k.pfm range_000$k.pfm --max-abs 1e-3; done
+mpi 1 "$sm" render steps.pvtu "${view[@]}" --time t=0.3 --out at1.pfm
+cmp at1.pfm single_1.pfm || fail "--time t=0.3 is not step 1"
+mpi 3 "$sm" render series.pvd "${view[@]}" --time t=0.7 --out at2.pfm
+cmp at2.pfm series3_0002.pfm || fail "--time t=0.7 of the series on 3 ranks is not its step 2"
+for n in 1 3; do
+  if mpi $n "$sm" render series.pvd "${view[@]}" --time t=1.5 --out late$n.pfm >late$n.log 2>&1; then
+    fail "--time t=1.5 rendered on $n rank(s)"
+  fi
+  grep -q "\-\-time: 1.5 is outside the data's times (0 .. 1)" late$n.log || { cat late$n.log; fail "no --time message ($n rank(s))"; }
+  [ ! -e late$n.pfm ] || fail "--time t=1.5 wrote an image ($n rank(s))"
+done
+
 # A step whose file holds another mesh is refused before any frame is written.
 "$sm" generate --analytic cube-tets6 --cube-n 5 --clusters 5 --steps 4 --out smaller.pvd
 sed 's|series/series_t2.pvtu|smaller/smaller_t2.pvtu|' series.pvd > grown.pvd

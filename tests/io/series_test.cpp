@@ -75,13 +75,13 @@ TEST(Series, OneStepPiecesAndStreamingAgreeWithTheWholeRead) {
   ReadOptions o;
   o.step = 2;
   const mesh::UnstructuredMesh two = readMesh(dir + "/s.pvd", o);
-  EXPECT_EQ(two.timeValues, std::vector<double>{1.5});
+  EXPECT_EQ(two.timeValues, (std::vector<double>{0.0, 0.25, 1.5}));  // every step's, as .vtu
   for (const mesh::Field& f : two.fields) {
     ASSERT_EQ(f.numSteps(), 1u);
     EXPECT_EQ(f.steps[0], all.findField(f.name)->steps[2]) << f.name;
   }
   o.step = 7;  // beyond the last: the last, as ReadOptions::step promises
-  EXPECT_EQ(readMesh(dir + "/s.pvd", o).timeValues, std::vector<double>{1.5});
+  EXPECT_EQ(readMesh(dir + "/s.pvd", o).findField("h")->steps[0], all.findField("h")->steps[2]);
 
   const std::vector<FieldStepCount> listed = listFieldSteps(dir + "/s.pvd");
   ASSERT_EQ(listed.size(), 3u);
