@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <tuple>
 
 #include "app/cell_data_share.h"
 #include "app/piece_agreement.h"
@@ -51,20 +52,21 @@ std::string pieceNames(const std::string& path, const RankShare& s) {
   return names;
 }
 
-// What a rank's pieces hold as point fields, in words, by name: the same on every rank for pieces
-// that agree, whatever the order the pieces list them in.
-std::string describePointFields(const RankShare& s) {
-  std::vector<std::pair<std::string, uint64_t>> fields;
+// What a rank's pieces hold as fields, in words, by name (cell data said so): the same on every
+// rank for pieces that agree, whatever the order the pieces list them in.
+std::string describeFields(const RankShare& s) {
+  std::vector<std::tuple<std::string, uint64_t, bool>> fields;
   if (s.stream)
-    for (const io::FieldStepCount& f : s.stream->fieldSteps) fields.push_back({f.name, f.steps});
+    for (const io::FieldStepCount& f : s.stream->fieldSteps)
+      fields.emplace_back(f.name, f.steps, f.cellData);
   else
-    for (const mesh::Field& f : s.mesh.fields) fields.push_back({f.name, f.numSteps()});
+    for (const mesh::Field& f : s.mesh.fields) fields.emplace_back(f.name, f.numSteps(), false);
   std::sort(fields.begin(), fields.end());
   std::string text;
-  for (const auto& [name, steps] : fields)
-    text += concat(text.empty() ? "" : ", ", "'", name, "' with ", steps,
-                   steps == 1 ? " step" : " steps");
-  return text.empty() ? "no point fields" : text;
+  for (const auto& [name, steps, cells] : fields)
+    text += concat(text.empty() ? "" : ", ", "'", name, "'", cells ? " (cell data)" : "", " with ",
+                   steps, steps == 1 ? " step" : " steps");
+  return text.empty() ? "no fields" : text;
 }
 
 // Flattens step 0 of a streamed cell field (type after type, as CellAverager takes values) and
@@ -73,12 +75,16 @@ std::string describePointFields(const RankShare& s) {
 void averageFirstCellStep(RankShare& s, const std::string& field, Collectives& coll) {
   mesh::UnstructuredMesh& m = s.mesh;
   s.stream->cells = std::make_shared<border::CellAverager>(m);
+  SM_CHECK_EQ(s.stream->fileCells.size(), m.numCells());  // every element's origin kept
   std::vector<float> values;
   values.reserve(m.numCells());
   for (const mesh::CellField& f : m.cellFields)
     if (f.name == field && !f.steps.empty())
       for (const std::vector<float>& perType : f.steps[0])
         values.insert(values.end(), perType.begin(), perType.end());
+  // Ranks agreed on what their pieces hold (readPieces); one rank's pieces agree by the weld.
+  if (values.size() != m.numCells())
+    throw FileError(m.source, "holds no cell data '", field, "' for its ", m.numCells(), " cells");
   std::vector<float> points = s.stream->cells->toPoints(values, coll);
   if (coll.rank() == 0)
     log::info(m.source, ": cell data '", field,
@@ -119,6 +125,7 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
     if (s.stream) {
       s.stream->filePoints = std::move(s.mesh.pointOrigin);
       s.stream->fileCells = std::move(s.mesh.cellOrigin);
+      s.stream->fileCellCount = s.mesh.fileCells;
     }
   } else {
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
@@ -127,8 +134,8 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
   // ranks reading some each must come to the same answer. (A stream of cell data lists the one
   // cell field asked for.)
   if (coll.size() > 1)
-    checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields",
-                     describePointFields(s), !s.clusters.empty(), pieceNames(path, s), coll);
+    checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields", describeFields(s),
+                     !s.clusters.empty(), pieceNames(path, s), coll);
   if (cellData && s.stream)
     averageFirstCellStep(s, o.read.fields.at(0), coll);
   else if (cellData)
@@ -164,6 +171,7 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, bool cellDat
     if (s.stream) {
       s.stream->filePoints = std::move(whole.pointOrigin);
       s.stream->fileCells = std::move(whole.cellOrigin);
+      s.stream->fileCellCount = whole.fileCells;
     }
     s.mesh = std::move(whole);
     if (streamCells) averageFirstCellStep(s, o.read.fields.at(0), coll);

@@ -30,13 +30,14 @@ struct ShareOptions {
 
 // How a streamed share reads its other steps: io::readFieldStep(path, field, step, read,
 // filePoints) gives them in the order of the share's mesh. Cell data comes from
-// io::readCellFieldStep(path, field, step, read, fileCells), averaged onto the points by `cells`
+// io::readCellFieldStep(path, field, step, read) and fileCells, averaged onto the points by `cells`
 // with every rank's help (collective).
 struct StepStream {
   io::ReadOptions read;
   std::vector<uint32_t> filePoints;             // empty: the file's points, in order
   std::vector<io::FieldStepCount> fieldSteps;   // of this rank's clusters
   std::vector<uint32_t> fileCells;              // cell data: UnstructuredMesh::cellOrigin
+  uint64_t fileCellCount = 0;                   // and UnstructuredMesh::fileCells
   std::shared_ptr<border::CellAverager> cells;  // set when the field streamed is cell data
 };
 

@@ -17,6 +17,7 @@
 #include "app/sequence_stats.h"
 #include "app/step_source.h"
 #include "app/time_selection.h"
+#include "common/check.h"
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/file_util.h"
@@ -107,6 +108,7 @@ class FrameLoads {
       prefetcher_.prefetch(load(step, 1));
       return;
     }
+    SM_CHECK(!cellsAhead_.valid());  // one read ahead at a time, taken by the next frame
     cellsAhead_ = std::async(std::launch::async, [&source = f_.source, &field = f_.field, step] {
       Timer t;
       CellsRead r{source.readCells(field, step, 1), 0.0};

@@ -50,8 +50,8 @@ uint64_t agreedStepCount(const std::string& path, const std::string& field, uint
   };
   const int rankLo = firstRankWith(lo), rankHi = firstRankWith(hi);
   auto steps = [&](double n) { return concat(uint64_t(n), n == 1 ? " time step" : " time steps"); };
-  const std::string fewer = lo == 0 ? concat("no point field '", field, "'")
-                                    : concat(steps(lo), " of field '", field, "'");
+  const std::string fewer =
+      lo == 0 ? concat("no field '", field, "'") : concat(steps(lo), " of field '", field, "'");
   throw FileError(path, "the pieces of rank ", rankLo, " have ", fewer, ", those of rank ", rankHi,
                   " ", steps(hi),
                   " (the pieces of one file must agree, as when one rank reads them all)");

@@ -7,6 +7,16 @@
 #include "prep/prepare.h"
 
 namespace sm::app {
+namespace {
+
+mesh::Range finiteRange(const std::vector<float>& values) {
+  mesh::Range r;
+  for (float v : values)
+    if (std::isfinite(v)) r.extend(v);
+  return r;
+}
+
+}  // namespace
 
 StepSource::StepSource(const std::string& path, const RankShare& share, Collectives& coll)
     : path_(path), share_(share), coll_(coll), numPoints_(share.mesh.numPoints()) {}
@@ -24,15 +34,18 @@ uint64_t StepSource::numSteps(const std::string& field) const {
 std::vector<float> StepSource::readCells(const std::string& field, uint64_t step,
                                          unsigned threads) const {
   const StepStream& s = *share_.stream;
-  const uint64_t cells = s.cells->numCells();
-  if (cells == 0) return {};  // a rank without pieces reads nothing (but averages, collectively)
+  if (s.cells->numCells() == 0) return {};  // no pieces: reads nothing (but averages, collectively)
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
-  std::vector<float> v = io::readCellFieldStep(path_, field, step, o, s.fileCells);
-  if (v.size() != cells)  // the file changed since it was loaded
-    throw FileError(path_, "cell data '", field, "' step ", step, " has ", v.size(), " values for ",
-                    cells, " cells");
-  return v;
+  // Every cell of the pieces, then this rank's elements among them: a file that changed since it
+  // was loaded shows in the count.
+  const std::vector<float> all = io::readCellFieldStep(path_, field, step, o);
+  if (all.size() != s.fileCellCount)
+    throw FileError(path_, "cell data '", field, "' step ", step, " has ", all.size(),
+                    " values; the pieces read had ", s.fileCellCount, " cells when loaded");
+  std::vector<float> mine(s.fileCells.size());
+  for (size_t i = 0; i < mine.size(); ++i) mine[i] = all[s.fileCells[i]];
+  return mine;
 }
 
 std::vector<float> StepSource::scalarsFromCells(const prep::PreparedRank& rank,
@@ -45,7 +58,7 @@ std::vector<float> StepSource::scalarsFromCells(const prep::PreparedRank& rank,
 std::vector<float> StepSource::read(const std::string& field, uint64_t step,
                                     unsigned threads) const {
   const StepStream& s = *share_.stream;
-  if (s.cells) return s.cells->toPoints(readCells(field, step, threads), coll_);
+  if (collective()) return s.cells->toPoints(readCells(field, step, threads), coll_);
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
   std::vector<float> v = io::readFieldStep(path_, field, step, o, s.filePoints);
@@ -56,18 +69,15 @@ std::vector<float> StepSource::read(const std::string& field, uint64_t step,
 }
 
 mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
-  if (collective()) {  // every rank takes part, with or without points
-    mesh::Range r;
-    for (float v : read(field, step))
-      if (std::isfinite(v)) r.extend(v);
-    return r;
+  if (collective()) {
+    // Step 0 was averaged at load and is in the mesh (on the ranks with points); a later step is
+    // averaged now, by every rank, with or without points.
+    if (step > 0) return finiteRange(read(field, step));
+    return numPoints_ ? mesh::fieldRange(*share_.mesh.findField(field), 0) : mesh::Range{};
   }
   if (numPoints_ == 0 || step >= numSteps(field)) return {};
   if (!share_.stream) return mesh::fieldRange(*share_.mesh.findField(field), step);
-  mesh::Range r;
-  for (float v : read(field, step))
-    if (std::isfinite(v)) r.extend(v);
-  return r;
+  return finiteRange(read(field, step));
 }
 
 std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std::string& field,

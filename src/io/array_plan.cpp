@@ -162,6 +162,15 @@ std::optional<size_t> chooseClusterArray(const std::string& source,
   return std::nullopt;
 }
 
+bool holdsField(const std::vector<ArrayInfo>& arrays, const std::string& request) {
+  const auto c = splitComponent(request);
+  for (const ArrayInfo& a : arrays) {
+    const std::string base = splitStepName(a.name).base;
+    if (base == request || (c && base == c->first)) return true;
+  }
+  return false;
+}
+
 FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
                               const std::vector<ArrayInfo>& cellArrays,
                               const ReadOptions& options) {
@@ -171,17 +180,9 @@ FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
     split.cells.loadFields = false;
     return split;
   }
-  auto names = [](const std::vector<ArrayInfo>& arrays, const std::string& request) {
-    auto c = splitComponent(request);
-    for (const ArrayInfo& a : arrays) {
-      const std::string base = splitStepName(a.name).base;
-      if (base == request || (c && base == c->first)) return true;
-    }
-    return false;
-  };
   split.points.fields.clear();
   for (const std::string& r : options.fields) {
-    if (!names(pointArrays, r) && names(cellArrays, r))
+    if (!holdsField(pointArrays, r) && holdsField(cellArrays, r))
       split.cells.fields.push_back(r);
     else
       split.points.fields.push_back(r);

@@ -58,6 +58,8 @@ struct FieldSplit {
   ReadOptions points;  // options with only the point requests (loadFields off if none is left)
   ReadOptions cells;   // options with only the cell requests (loadFields off if none)
 };
+// True when `arrays` hold field `request` ("NAME", its steps "NAME@tK", or the array of "NAME[k]").
+bool holdsField(const std::vector<ArrayInfo>& arrays, const std::string& request);
 FieldSplit splitFieldRequests(const std::vector<ArrayInfo>& pointArrays,
                               const std::vector<ArrayInfo>& cellArrays, const ReadOptions& options);
 

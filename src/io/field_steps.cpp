@@ -71,8 +71,10 @@ std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOpt
       countSteps(file, planAllSteps(file, points, split.points,
                                     dataCellArrays(vtuCellArrayNames(pieces[0]), options)));
   if (split.cells.loadFields)
-    for (FieldStepCount& f : countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell")))
+    for (FieldStepCount& f : countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell"))) {
+      f.cellData = true;
       steps.push_back(std::move(f));
+    }
   return steps;
 }
 
@@ -85,6 +87,10 @@ void checkSameSteps(const std::string& path, const std::string& piece,
                            [&](const FieldStepCount& o) { return o.name == f.name; });
     if (it == other.end())
       throw FileError(path, "piece '", piece, "' has no point field '", f.name, "'");
+    if (it->cellData != f.cellData)
+      throw FileError(path, "piece '", piece, "' holds '", f.name, "' as ",
+                      it->cellData ? "cell" : "point", " data, the first piece as ",
+                      f.cellData ? "cell" : "point", " data");
     if (it->steps != f.steps)
       throw FileError(path, "piece '", piece, "' has ", it->steps, " time steps of field '", f.name,
                       "', the first piece ", f.steps);
@@ -126,12 +132,13 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
   const std::vector<ArrayInfo> cellArrays = vtuCellArrays(doc, pieces[0]);
   ReadOptions one;
   one.fields = {field};
-  const bool isCellData = splitFieldRequests(pointArrays, cellArrays, one).cells.loadFields;
-  if (isCellData != cells)
-    throw FileError(file, "holds '", field, "' as ", isCellData ? "cell" : "point", " data, not ",
+  // As readMesh decides: point data when the points hold the name, else cell data. A name held
+  // by neither is named as missing below.
+  const bool inPoints = holdsField(pointArrays, field);
+  if ((inPoints || holdsField(cellArrays, field)) && inPoints == cells)
+    throw FileError(file, "holds '", field, "' as ", inPoints ? "point" : "cell", " data, not ",
                     cells ? "cell" : "point",
-                    " data as its first step did (every step, and every piece of a .pvtu, must "
-                    "hold it alike)");
+                    " data (every step, and every piece of a .pvtu, must hold it alike)");
   const std::vector<ArrayInfo>& arrays = cells ? cellArrays : pointArrays;
   const char* kind = cells ? "cell" : "point";
   const std::vector<FieldLoad> loads = planFields(file, arrays, one, {}, kind);

@@ -84,6 +84,7 @@ std::vector<uint64_t> pieceCellCounts(const std::string& path);
 struct FieldStepCount {
   std::string name;
   uint64_t steps = 0;
+  bool cellData = false;  // read as cell data (named by the request), averaged onto the points
 };
 
 // The point fields readMesh(path, options) loads, with their step counts, without loading them:

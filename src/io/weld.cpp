@@ -152,7 +152,7 @@ void joinCellOrigins(const std::vector<mesh::UnstructuredMesh>& pieces,
   for (const auto& p : pieces) total += p.fileCells;
   if (total > 0xFFFFFFFFull)
     throw FileError(out.source, "the pieces hold ", total,
-                    " cells, more than 2^32 - 1 to stream cell data of");
+                    " cells: more than 2^32 - 1, the most whose origins can be kept");
   out.fileCells = total;
   for (int t = 0; t < mesh::kNumCellTypes; ++t) {
     uint64_t offset = 0;

@@ -275,7 +275,7 @@ void MeshBuilder::keepCellOrigins(uint64_t fileCells) {
   // Origins are 32-bit, like vertex ids: one rank's pieces never hold more cells.
   if (fileCells > 0xFFFFFFFFull)
     throw FileError(source_, "has ", fileCells,
-                    " cells, more than 2^32 - 1 to stream cell data of");
+                    " cells: more than 2^32 - 1, the most whose origins can be kept");
   fileCells_ = fileCells;
 }
 

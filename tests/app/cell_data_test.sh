@@ -7,7 +7,7 @@ set -euo pipefail
 sm=$1 work=$2
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$work" && cd "$work"
-rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png whole.vtu series* gen gen.pvd ./*.pfm streamed-*
+rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png whole.vtu series* gen gen.pvd mixed.pvtu mixed.png ./*.pfm ./*.json streamed-*
 
 python3 - <<'PY'
 import math, os, struct
@@ -156,6 +156,44 @@ for k in 0 1; do
       "streamed-${name}_000$k.pfm"
   done
 done
+# The streamed collective path without --range (the range pass averages every step over the
+# ranks), with the warm-up frame and a second run (--stats-json, --repeat 2) and without
+# prefetching, on 4 ranks (one without pieces), against the steps in memory on 2 ranks.
+three=(--field s --time all --view iso --size 96x96)
+mpiexec -n 2 --oversubscribe "$sm" render whole.vtu "${three[@]}" --out free-memory.pfm
+mpiexec -n 4 --oversubscribe "$sm" render checker.pvtu "${three[@]}" --out free-pieces.pfm
+mpiexec -n 4 --oversubscribe "$sm" render checker.pvtu "${three[@]}" --range 0.9,5 --repeat 2 \
+  --stats-json repeat.json --out repeat.pfm
+mpiexec -n 4 --oversubscribe "$sm" render checker.pvtu "${three[@]}" --range 0.9,5 --no-prefetch \
+  --out noprefetch.pfm
+for k in 0 1; do
+  close "step $k streamed on 4 ranks, range from every step" "free-memory_000$k.pfm" "free-pieces_000$k.pfm"
+  close "step $k streamed, --repeat 2" "streamed-memory_000$k.pfm" "repeat_000$k.pfm"
+  close "step $k streamed, --no-prefetch" "streamed-memory_000$k.pfm" "noprefetch_000$k.pfm"
+done
+python3 -c "import json,sys; j=json.load(open('repeat.json'))['sequence']; sys.exit(0 if j['frames'] == 4 and j['runs'] == 2 else 1)" ||
+  { echo "FAIL: --repeat 2 did not render 2 runs of 2 steps"; fails=$((fails + 1)); }
+# Pieces holding the field as cell data on one rank and as point data on another stop every rank
+# with one message naming both.
+python3 - <<'PY'
+import re
+s = open('cells/series_0_1.vtu').read()
+n = int(re.search(r'NumberOfPoints="(\d+)"', s).group(1))
+s = re.sub(r'<CellData>.*?</CellData>',
+           '<PointData><DataArray type="Float32" Name="c" format="ascii">%s</DataArray></PointData>'
+           % ' '.join(['1'] * n), s, count=1, flags=re.S)
+open('cells/mixed_1.vtu', 'w').write(s)
+PY
+printf '%s' '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="cells/series_0_0.vtu"/><Piece Source="cells/mixed_1.vtu"/></PUnstructuredGrid></VTKFile>' > mixed.pvtu
+if out=$(mpiexec -n 2 --oversubscribe "$sm" render mixed.pvtu --field c --time all --size 32x32 --out mixed.png 2>&1); then
+  echo "FAIL: pieces with cell and point data rendered"; fails=$((fails + 1))
+elif grep -qF "mixed.pvtu: the pieces do not hold the same cell data: rank" <<<"$out" &&
+  grep -qF "has 'c' (cell data) with 1 step" <<<"$out" && grep -qF "has 'c' with 1 step" <<<"$out" &&
+  ! grep -qi "check failed\|internal" <<<"$out" && [ ! -e mixed.png ]; then
+  echo "ok: cell data on one rank and point data on another refused on 2 ranks"
+else
+  echo "FAIL: mixed pieces: $out"; fails=$((fails + 1))
+fi
 # generate --cell-data writes a solver-like series of cell data, which streams on 1 and 3 ranks.
 "$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 3 --steps 2 --cell-data --out gen.pvd \
   | grep -qF "2 steps of cell data" || { echo "FAIL: generate --cell-data"; fails=$((fails + 1)); }
@@ -170,8 +208,8 @@ printf '%s' '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0
 if out=$(mpiexec -n 2 --oversubscribe "$sm" render uneven.pvtu --field s --size 32x32 --out uneven.png 2>&1); then
   echo "FAIL: uneven pieces rendered"; fails=$((fails + 1))
 elif grep -qF "uneven.pvtu: the pieces do not hold the same cell data: rank" <<<"$out" &&
-  grep -qF "(cells/uneven_0.vtu) has 's' with 2 steps" <<<"$out" &&
-  grep -qF "(cells/uneven_1.vtu) has 's' with 3 steps" <<<"$out" && [ ! -e uneven.png ]; then
+  grep -qF "(cells/uneven_0.vtu) has 's' (cell data) with 2 steps" <<<"$out" &&
+  grep -qF "(cells/uneven_1.vtu) has 's' (cell data) with 3 steps" <<<"$out" && [ ! -e uneven.png ]; then
   echo "ok: uneven pieces refused on 2 ranks"
 else
   echo "FAIL: uneven pieces: $out"; fails=$((fails + 1))

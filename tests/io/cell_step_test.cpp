@@ -174,6 +174,8 @@ TEST(CellStep, WrongDataMissingStepsAndOtherFormatsAreNamed) {
               readCellFieldStep(one, "q", 0);
             }).find("holds 'q' as point data, not cell data"),
             std::string::npos);
+  EXPECT_NE(fileErrorOf([&] { readCellFieldStep(one, "zz", 0); }).find("has no cell array 'zz'"),
+            std::string::npos);
   EXPECT_NE(fileErrorOf([&] {
               readFieldStep(one, "p", 0);
             }).find("holds 'p' as cell data, not point data"),
