@@ -1,8 +1,10 @@
 #include "app/step_source.h"
 
 #include <cmath>
+#include <mutex>
 
 #include "common/error.h"
+#include "common/log.h"
 #include "io/mesh_io.h"
 #include "prep/prepare.h"
 
@@ -31,6 +33,19 @@ uint64_t StepSource::numSteps(const std::string& field) const {
   return f ? f->numSteps() : 0;
 }
 
+void StepSource::warnNonFinite(const char* what, const std::string& field, uint64_t step,
+                               const std::vector<float>& values) const {
+  uint64_t n = 0;
+  for (float v : values) n += !std::isfinite(v);
+  if (n == 0) return;
+  {  // once per step: the range pass and the frame read the same step
+    std::lock_guard<std::mutex> lock(warnedMutex_);
+    if (!warned_.insert({field, step}).second) return;
+  }
+  log::warning(path_, ": ", what, " '", field, "' step ", step, " has ", n,
+               " non-finite values; they render transparent");
+}
+
 std::vector<float> StepSource::readCells(const std::string& field, uint64_t step,
                                          unsigned threads) const {
   const StepStream& s = *share_.stream;
@@ -45,6 +60,7 @@ std::vector<float> StepSource::readCells(const std::string& field, uint64_t step
                     " values; the pieces read had ", s.fileCellCount, " cells when loaded");
   std::vector<float> mine(s.fileCells.size());
   for (size_t i = 0; i < mine.size(); ++i) mine[i] = all[s.fileCells[i]];
+  warnNonFinite("cell data", field, step, mine);
   return mine;
 }
 
@@ -62,6 +78,7 @@ std::vector<float> StepSource::read(const std::string& field, uint64_t step,
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
   std::vector<float> v = io::readFieldStep(path_, field, step, o, s.filePoints);
+  warnNonFinite("field", field, step, v);
   if (v.size() != numPoints_)  // the file changed since it was loaded
     throw FileError(path_, "field '", field, "' step ", step, " has ", v.size(), " values for ",
                     numPoints_, " points");

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <mutex>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -44,10 +46,15 @@ class StepSource {
 
  private:
   std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0) const;
+  // Loading warned about step 0's non-finite values; streamed steps warn here, once each.
+  void warnNonFinite(const char* what, const std::string& field, uint64_t step,
+                     const std::vector<float>& values) const;
 
   std::string path_;
   const RankShare& share_;
   Collectives& coll_;
+  mutable std::mutex warnedMutex_;  // the prefetch thread reads steps too
+  mutable std::set<std::pair<std::string, uint64_t>> warned_;
   uint64_t numPoints_;
 };
 

@@ -130,10 +130,15 @@ std::vector<FieldLoad> planFields(const std::string& source,
     }
     auto split = splitComponent(request);
     auto it = split ? byName(split->first) : groups.end();
-    if (it == groups.end())
+    if (it == groups.end()) {
+      // A name that is no array at all: the cell data is listed too, where the field may be.
+      const std::string hint = mesh::cellArrayHint(cellArrays, request);
+      std::string cells;
+      for (const std::string& n : hint.empty() ? cellArrays : std::vector<std::string>{})
+        cells += (cells.empty() ? "; cell data: " : ", ") + n;
       throw FileError(source, "has no ", kind, " array '", split ? split->first : request, "' (",
-                      kind, " arrays: ", listNames(groups), ")",
-                      mesh::cellArrayHint(cellArrays, request));
+                      kind, " arrays: ", listNames(groups), cells, ")", hint);
+    }
     if (uint32_t(split->second) >= it->components)
       throw FileError(source, "field '", request, "': ", kind, " array '", it->base, "' has ",
                       it->components, it->components == 1 ? " component" : " components");

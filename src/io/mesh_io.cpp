@@ -40,13 +40,16 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool avera
   for (const mesh::CellField& f : m.cellFields) {
     log::info(m.source, ": field '", f.name,
               "' is cell data: each point takes the mean of the cells around it");
-    uint64_t nonFinite = 0;
-    for (const auto& step : f.steps)
-      for (const auto& values : step)
-        for (float v : values) nonFinite += !std::isfinite(v);
+    uint64_t nonFinite = 0, firstStep = 0;
+    for (size_t k = 0; k < f.steps.size(); ++k)
+      for (const auto& values : f.steps[k])
+        for (float v : values)
+          if (!std::isfinite(v) && nonFinite++ == 0) firstStep = k;
+    // The step is named: a series' mesh is named after its first file, whichever holds them.
     if (nonFinite)
       log::warning(m.source, ": cell data '", f.name, "' has ", nonFinite,
-                   " non-finite values; the points of those cells render transparent");
+                   " non-finite values (first in step ", firstStep,
+                   "); the points of those cells render transparent");
   }
   if (average) mesh::cellFieldsToPoints(m);
   return m;

@@ -7,7 +7,7 @@ set -euo pipefail
 sm=$1 work=$2
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$work" && cd "$work"
-rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png whole.vtu series* gen gen.pvd mixed.pvtu mixed.png ./*.pfm ./*.json streamed-*
+rm -rf cells cells.pvtu checker.pvtu uneven.pvtu uneven.png whole.vtu series* gen gen.pvd mixed.pvtu mixed.png nan.vtu nan_*.png ./*.pfm ./*.json streamed-*
 
 python3 - <<'PY'
 import math, os, struct
@@ -194,6 +194,17 @@ elif grep -qF "mixed.pvtu: the pieces do not hold the same cell data: rank" <<<"
 else
   echo "FAIL: mixed pieces: $out"; fails=$((fails + 1))
 fi
+# A non-finite value in a streamed step is warned about once, naming the step (loading checks
+# step 0 only).
+python3 - <<'PY'
+import re
+s = open('whole.vtu').read()
+s = re.sub(r'(Name="s@t1" format="ascii">)(\S+)', lambda m: m.group(1) + 'nan', s, count=1)
+open('nan.vtu', 'w').write(s)
+PY
+n=$("$sm" render nan.vtu --field s --time all --size 32x32 --out nan.png 2>&1 | grep -c "nan.vtu: cell data 's' step 1 has 1 non-finite values" || true)
+if [ "$n" -eq 1 ]; then echo "ok: a NaN in streamed step 1 warned once"
+else echo "FAIL: a NaN in streamed step 1 warned $n times"; fails=$((fails + 1)); fi
 # generate --cell-data writes a solver-like series of cell data, which streams on 1 and 3 ranks.
 "$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 3 --steps 2 --cell-data --out gen.pvd \
   | grep -qF "2 steps of cell data" || { echo "FAIL: generate --cell-data"; fails=$((fails + 1)); }
