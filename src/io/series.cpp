@@ -165,6 +165,10 @@ void checkStep(const std::string& path, const std::vector<SeriesStep>& steps, ui
                            [&](const FieldStepCount& c) { return c.name == f.name; });
     if (it == fields.end())
       throw FileError(path, stepName(k, steps[k]), " has no field '", f.name, "'");
+    if (it->cellData != f.cellData)
+      throw FileError(path, stepName(k, steps[k]), " holds '", f.name, "' as ",
+                      it->cellData ? "cell" : "point", " data, step 0 as ",
+                      f.cellData ? "cell" : "point", " data");
     checkOneStep(path, k, steps[k], f.name, it->steps);
   }
 }

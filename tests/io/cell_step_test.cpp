@@ -160,6 +160,25 @@ TEST(CellStep, SeriesStepsComeFromTheirFiles) {
               readCellFieldStep(dir + "/s.pvd", "p", 2, o, m.cellOrigin);
             }).find("field 'p' has 2 time steps (0 .. 1), not step 2"),
             std::string::npos);
+  // A step holding the field as point data is refused when the series is listed, before any step
+  // is read.
+  std::string pointData = vtuXml(pieceXml(0, false, 1));
+  const std::string open = "<PointData>";
+  pointData.replace(pointData.find(open), open.size(),
+                    open +
+                        "<DataArray type=\"Float32\" Name=\"p\" format=\"ascii\">1 2 3 4 5"
+                        "</DataArray>");
+  pointData.replace(pointData.find("Name=\"p@t0\""), 11, "Name=\"x@t0\"");
+  writeText(dir + "/pd_0.vtu", pointData);
+  writeText(dir + "/pd.pvd",
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"a_0.vtu\"/>"
+            "<DataSet timestep=\"1\" file=\"pd_0.vtu\"/></Collection></VTKFile>");
+  ReadOptions p;
+  p.fields = {"p"};
+  EXPECT_NE(fileErrorOf([&] {
+              listFieldSteps(dir + "/pd.pvd", p);
+            }).find("step 1 ('" + dir + "/pd_0.vtu') holds 'p' as point data, step 0 as cell data"),
+            std::string::npos);
 }
 
 TEST(CellStep, WrongDataMissingStepsAndOtherFormatsAreNamed) {
