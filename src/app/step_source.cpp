@@ -35,6 +35,7 @@ uint64_t StepSource::numSteps(const std::string& field) const {
 
 void StepSource::warnNonFinite(const char* what, const std::string& field, uint64_t step,
                                const std::vector<float>& values) const {
+  if (step == 0) return;  // loading warned about it
   uint64_t n = 0;
   for (float v : values) n += !std::isfinite(v);
   if (n == 0) return;
