@@ -155,7 +155,33 @@ uint64_t parseByteCount(const char* what, const char* text) {
   return uint64_t(v) << shift;
 }
 
+// Keeps the Vulkan drivers loaded for the rest of the process. Why: NVIDIA's driver (580, on an
+// H100) cannot be loaded again after the loader unloaded it, which the loader does when the last
+// instance goes. A process that makes contexts one after another (in-process ranks, the in situ
+// library's users, test suites) then found no driver from some point on: the loader logged
+// "Could not get 'vkCreateInstance' via 'vk_icdGetInstanceProcAddr'". One plain instance held
+// until exit keeps every driver loaded, as LD_PRELOAD of the driver did; a failure here is left to
+// the caller's own vkCreateInstance to report.
+void holdDriversLoaded() {
+  struct Holder {
+    VkInstance instance = VK_NULL_HANDLE;
+    Holder() {
+      VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+      app.pApplicationName = "shellmarch (drivers held)";
+      app.apiVersion = VK_API_VERSION_1_2;
+      VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+      ci.pApplicationInfo = &app;
+      if (vkCreateInstance(&ci, nullptr, &instance) != VK_SUCCESS) instance = VK_NULL_HANDLE;
+    }
+    ~Holder() {
+      if (instance) vkDestroyInstance(instance, nullptr);
+    }
+  };
+  static Holder held;
+}
+
 VkInstance plainInstance() {
+  holdDriversLoaded();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "shellmarch";
   app.apiVersion = VK_API_VERSION_1_2;
@@ -227,6 +253,7 @@ void Context::release() {
 }
 
 void Context::createInstance(const ContextOptions& o) {
+  holdDriversLoaded();
   std::vector<const char*> layers, ext;
   for (const auto& e : o.instanceExtensions) ext.push_back(e.c_str());
   debugUtils_ = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -269,7 +296,16 @@ void Context::createInstance(const ContextOptions& o) {
     features.pNext = &mci;
     ci.pNext = &features;
   }
-  SM_VK(vkCreateInstance(&ci, nullptr, &instance_));
+  const VkResult made = vkCreateInstance(&ci, nullptr, &instance_);
+  // The loader answers this when it found no driver it could load: say so in words, since the
+  // raw code reads like a version mismatch.
+  if (made == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw VulkanError(
+        "no Vulkan driver could be loaded (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
+        "install one (on Debian 12: mesa-vulkan-drivers from bookworm-backports, for lavapipe) "
+        "or point VK_DRIVER_FILES at the driver's manifest; VK_LOADER_DEBUG=driver tells why",
+        made);
+  SM_VK(made);
   if (validation_ && debugUtils_) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));

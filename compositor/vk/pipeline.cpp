@@ -1,5 +1,6 @@
 #include "vk/pipeline.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -113,7 +114,8 @@ GroupGrid groupGrid(uint64_t groups, uint32_t maxX, uint32_t maxY) {
 
 GroupGrid ComputePipeline::gridFor(uint64_t items, uint32_t itemsPerGroup) const {
   const uint32_t* limit = ctx_->properties().limits.maxComputeWorkGroupCount;
-  return groupGrid((items + itemsPerGroup - 1) / itemsPerGroup, limit[0], limit[1]);
+  return groupGrid((items + itemsPerGroup - 1) / itemsPerGroup, std::min(limit[0], kGridRowGroups),
+                   limit[1]);
 }
 
 TimestampQueries::TimestampQueries(const Context& ctx, uint32_t count) : ctx_(&ctx), count_(count) {

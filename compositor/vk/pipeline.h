@@ -35,6 +35,11 @@ inline uint32_t groupsFor(uint64_t items, uint32_t groupSize) {
 // image at 64 pixels per group is 65 536. y rows of x groups, with the fewest rows and then
 // the shortest rows that hold `groups`: fewer than y groups are left idle. Throws VulkanError when
 // even maxY rows do not hold them.
+//
+// Pipelines lay out their dispatches in rows of at most kGridRowGroups even where the device takes
+// more (NVIDIA takes 2^31 - 1 in x): every device then runs the same grid, so the rows that
+// lavapipe needs are also what a GPU runs and what the tests cover on it.
+inline constexpr uint32_t kGridRowGroups = 65535;
 struct GroupGrid {
   uint32_t x = 0, y = 0;
 };

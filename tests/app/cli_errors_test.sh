@@ -134,6 +134,11 @@ expect "ok.pvtu: its pieces are its clusters; a cluster array ('x')" "$sm" rende
 expect "--clusters and --cluster-array: give one" "$sm" render ok.pvtu --cluster-array x --clusters 2 --out a.png
 expect "--field: must not be empty" "$sm" render ok.pvtu --field '' --out a.png
 expect "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.png
+# No Vulkan driver at all (the loader finds none to load): said in words, not as a raw VkResult.
+# Without validation, whose messenger would add the loader's own lines.
+expect "no Vulkan driver could be loaded" env -u SHELLMARCH_VALIDATION VK_DRIVER_FILES=/nonexistent/icd.json \
+  VK_ICD_FILENAMES=/nonexistent/icd.json "$sm" render ok.pvtu --out nodriver.png
+if [ -e nodriver.png ]; then echo "FAIL: an image was written without a driver"; fails=$((fails + 1)); fi
 # A benchmark's --json is checked before it measures anything.
 expect "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench prep --json nodir/x.json --no-vtk --work-dir bp
 expect "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# ci/portable-bundle.sh packs a build that runs from the bundle: with the machine's glibc and with
+# the packed one (forced), the packed binary renders the same image as the build tree's, and the
+# packed validation layer loads.
+set -uo pipefail
+src=$1 build=$2 sm=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fails=0
+check() {  # check "what" command...
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; else echo "FAIL: $what"; fails=$((fails + 1)); fi
+}
+bash "$src/ci/portable-bundle.sh" "$build" "$work/b.tar" > pack.log 2>&1 || { cat pack.log; exit 1; }
+mkdir x && tar -C x -xf b.tar || exit 1
+run=$work/x/shellmarch/run
+"$sm" generate --analytic cube-tets6 --cube-n 3 --out cube.pvtu > /dev/null || exit 1
+opts=(--field linear --size 48x40 --view iso)
+"$sm" render cube.pvtu "${opts[@]}" --out tree.png > /dev/null || exit 1
+check "packed binary with the machine's glibc renders" "$run" shellmarch render cube.pvtu "${opts[@]}" --out system.png
+check "packed binary with the packed glibc renders" env SHELLMARCH_PORTABLE_PACKED=1 "$run" shellmarch render \
+  cube.pvtu "${opts[@]}" --out packed.png
+check "same image (machine's glibc)" cmp -s tree.png system.png
+check "same image (packed glibc)" cmp -s tree.png packed.png
+SHELLMARCH_PORTABLE_PACKED=1 LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld.log
+check "the packed glibc is the one loaded" grep -q "init: $work/x/shellmarch/glibc/libc.so.6" ld.log
+SHELLMARCH_PORTABLE_PACKED=1 LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld-cxx.log
+check "the packed C++ runtime is the one loaded" grep -q "init: $work/x/shellmarch/cxx/libstdc++.so.6" ld-cxx.log
+check "the packed validation layer loads" env SHELLMARCH_VALIDATION=1 SHELLMARCH_PORTABLE_PACKED=1 "$run" test_vk \
+  --gtest_filter=Vk.ValidationIsOnInTests
+check "the GPU cases are listed for portable-gpu-check.sh" grep -q "^test_render .*Slab.TetGrid" x/shellmarch/gpu-tests.txt
+[ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
+rm -rf b.tar x  # 300 MB; kept when a check failed
