@@ -17,16 +17,18 @@ namespace sm::io {
 namespace {
 
 // Fields in the order the loads name them first (the order readMesh adds them in), each with its
-// step count; a gap in the steps is the error a full read gives.
+// step count and the components of the arrays (of `arrays`) it is read from; a gap in the steps is
+// the error a full read gives.
 std::vector<FieldStepCount> countSteps(const std::string& source,
-                                       const std::vector<FieldLoad>& loads) {
+                                       const std::vector<FieldLoad>& loads,
+                                       const std::vector<ArrayInfo>& arrays) {
   std::vector<FieldStepCount> fields;
   std::vector<std::vector<uint64_t>> steps;
   for (const FieldLoad& l : loads) {
     auto it = std::find_if(fields.begin(), fields.end(),
                            [&](const FieldStepCount& f) { return f.name == l.field; });
     if (it == fields.end()) {
-      fields.push_back({l.field, 0});
+      fields.push_back({l.field, 0, false, uint32_t(arrays.at(l.array).components)});
       steps.emplace_back();
       it = fields.end() - 1;
     }
@@ -62,16 +64,19 @@ std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOpt
   if (options.fields.empty() || !options.loadFields) {  // every point array; no cell data
     ReadOptions all = options;
     all.loadFields = true;
-    return countSteps(file, planAllSteps(file, points, all, {}));
+    return countSteps(file, planAllSteps(file, points, all, {}), points);
   }
   // Cell data named as a field is a field readMesh loads too (averaged onto the points).
   const std::vector<ArrayInfo> cells = vtuCellArrays(doc, pieces[0]);
   const FieldSplit split = splitFieldRequests(points, cells, options);
   std::vector<FieldStepCount> steps =
-      countSteps(file, planAllSteps(file, points, split.points,
-                                    dataCellArrays(vtuCellArrayNames(pieces[0]), options)));
+      countSteps(file,
+                 planAllSteps(file, points, split.points,
+                              dataCellArrays(vtuCellArrayNames(pieces[0]), options)),
+                 points);
   if (split.cells.loadFields)
-    for (FieldStepCount& f : countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell"))) {
+    for (FieldStepCount& f :
+         countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell"), cells)) {
       f.cellData = true;
       steps.push_back(std::move(f));
     }
@@ -94,6 +99,9 @@ void checkSameSteps(const std::string& path, const std::string& piece,
     if (it->steps != f.steps)
       throw FileError(path, "piece '", piece, "' has ", it->steps, " time steps of field '", f.name,
                       "', the first piece ", f.steps);
+    if (it->components != f.components)
+      throw FileError(path, "piece '", piece, "' holds '", f.name, "' with ", it->components,
+                      " components, the first piece with ", f.components);
   }
   if (other.size() != first.size())
     throw FileError(path, "piece '", piece, "' has ", other.size(),

@@ -84,7 +84,8 @@ std::vector<uint64_t> pieceCellCounts(const std::string& path);
 struct FieldStepCount {
   std::string name;
   uint64_t steps = 0;
-  bool cellData = false;  // read as cell data (named by the request), averaged onto the points
+  bool cellData = false;    // read as cell data (named by the request), averaged onto the points
+  uint32_t components = 0;  // of the array it is read from (a vector's magnitude); 0: not known
 };
 
 // The point fields readMesh(path, options) loads, with their step counts, without loading them:

@@ -169,6 +169,11 @@ void checkStep(const std::string& path, const std::vector<SeriesStep>& steps, ui
       throw FileError(path, stepName(k, steps[k]), " holds '", f.name, "' as ",
                       it->cellData ? "cell" : "point", " data, step 0 as ",
                       f.cellData ? "cell" : "point", " data");
+    // A vector where step 0 has a scalar (or another vector) would be read as its magnitude and
+    // drawn with step 0's transfer function: refused, as within one file.
+    if (it->components && f.components && it->components != f.components)
+      throw FileError(path, stepName(k, steps[k]), " holds '", f.name, "' with ", it->components,
+                      " components, step 0 with ", f.components);
     checkOneStep(path, k, steps[k], f.name, it->steps);
   }
 }

@@ -274,6 +274,53 @@ TEST(Series, CellDataStepsWithPiecesInAnotherOrderAreRefused) {
   }
 }
 
+// A later step holding the field with another number of components (a vector where step 0 has a
+// scalar) is refused when the series is listed, as within one file, point and cell data alike:
+// read, its magnitude would have been drawn with step 0's range. Before, it was accepted.
+TEST(Series, AStepWithAnotherNumberOfComponentsIsRefused) {
+  const std::string dir = sm::test::outputDir("Series.Components");
+  auto withComponents = [](int n, bool cellData) {
+    std::string x = twoTets(1, 3);
+    const std::string from = "<CellData><DataArray type=\"Float32\" Name=\"p\" format=\"ascii\">";
+    std::string values;
+    for (int i = 0; i < (cellData ? 2 : 5) * n; ++i) values += std::to_string(i % 7) + " ";
+    const std::string array = "<DataArray type=\"Float32\" Name=\"p\" NumberOfComponents=\"" +
+                              std::to_string(n) + "\" format=\"ascii\">" + values + "</DataArray>";
+    const size_t at = x.find(from);
+    x.replace(
+        at, x.find("</CellData>") - at + 11,
+        cellData ? "<CellData>" + array + "</CellData>" : "<PointData>" + array + "</PointData>");
+    return x;
+  };
+  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
+  const std::string tail = "</Collection></VTKFile>";
+  for (bool cellData : {false, true}) {
+    const std::string kind = cellData ? "c" : "p";
+    writeText(dir + "/" + kind + "1.vtu", withComponents(1, cellData));
+    writeText(dir + "/" + kind + "3.vtu", withComponents(3, cellData));
+    writeText(dir + "/" + kind + ".pvd", head + "<DataSet timestep=\"0\" file=\"" + kind +
+                                             "1.vtu\"/><DataSet timestep=\"1\" file=\"" + kind +
+                                             "3.vtu\"/>" + tail);
+    writeText(dir + "/" + kind + "-same.pvd", head + "<DataSet timestep=\"0\" file=\"" + kind +
+                                                  "3.vtu\"/><DataSet timestep=\"1\" file=\"" +
+                                                  kind + "3.vtu\"/>" + tail);
+    ReadOptions o;
+    o.fields = {"p"};
+    const std::string want =
+        "step 1 ('" + dir + "/" + kind + "3.vtu') holds 'p' with 3 components, step 0 with 1";
+    EXPECT_NE(fileErrorOf([&] { listFieldSteps(dir + "/" + kind + ".pvd", o); }).find(want),
+              std::string::npos)
+        << kind;
+    EXPECT_NE(fileErrorOf([&] { readMesh(dir + "/" + kind + ".pvd", o); }).find(want),
+              std::string::npos)
+        << kind;
+    // The same number of components in every step reads (the magnitude, both steps).
+    const mesh::UnstructuredMesh m = readMesh(dir + "/" + kind + "-same.pvd", o);
+    ASSERT_EQ(m.fields.size(), 1u) << kind;
+    EXPECT_EQ(m.fields[0].numSteps(), 2u) << kind;
+  }
+}
+
 TEST(Series, BadIndexesAndStepsAreNamed) {
   const std::string dir = sm::test::outputDir("Series.Errors");
   writeText(dir + "/a.vtu", twoTets(1, 3));
