@@ -43,8 +43,9 @@ if command -v mpiexec > /dev/null; then
   echo "== compositor under mpiexec (the machine's Open MPI), validation layer on"
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   for n in 1 2 3 4; do
-    timeout 240 mpiexec -n "$n" --oversubscribe "$run" test_compositor_mpi \
+    timeout 240 mpiexec -n "$n" --oversubscribe "$run" test_compositor_mpi --gtest_color=no \
       --gtest_filter='CompositorMpi.*' > "$out/test_compositor_mpi_$n.log" 2>&1
-    echo "test_compositor_mpi $n ranks rc=$? $(grep -cE '^\[       OK \]' "$out/test_compositor_mpi_$n.log") ok"
+    echo "test_compositor_mpi $n ranks rc=$? $(grep -E '^\[  (PASSED|FAILED)  \]' \
+      "$out/test_compositor_mpi_$n.log" | tr '\n' ' ')"
   done
 fi
