@@ -77,6 +77,7 @@ void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
     scene::Image img(f.job.width, f.job.height);
     img.pixels = std::move(frame.pixels);
     scene::writeImage(framePath(f.job.out, step, sequence), img, f.job.background);
+    frame.pixels = std::move(img.pixels);  // back for the next frame (Renderer::render's reuse)
   }
 }
 
@@ -143,11 +144,12 @@ void renderFrames(const Frames& f) {
   SequenceStats stats(f.job.repeat, f.job.prefetch);
   FrameLoads loads(f);
   std::optional<uint64_t> shown;  // the step whose scalars frames read
+  render::FrameResult frame;      // its pixels' storage is handed from frame to frame
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
     loads.loadFor(stepOf(0));
     shown = stepOf(0);
-    f.renderer.render(f.settings);
+    frame = f.renderer.render(f.settings);
   }
   for (size_t i = 0; i < total; ++i) {
     fault::atFrame(i);
@@ -158,7 +160,7 @@ void renderFrames(const Frames& f) {
     if (f.job.prefetch && i + 1 < total && stepOf(i + 1) != stepOf(i))
       loads.prefetch(stepOf(i + 1));
     Timer renderTimer;
-    render::FrameResult frame = f.renderer.render(f.settings);
+    frame = f.renderer.render(f.settings, std::move(frame.pixels));
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
     stats.addFrame(int(i / perRun), f.steps[i % perRun], frameMs, renderMs, scalars);
     if (i < perRun) writeFrame(f, f.steps[i], frame);

@@ -52,6 +52,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   std::unique_ptr<sm::render::GpuScene> scene;
   std::unique_ptr<sm::comp::DeepCompositor> compositor;
   std::unique_ptr<sm::render::Renderer> renderer;
+  std::vector<glm::vec4> pixels;  // the composited image's storage, handed from frame to frame
   FieldStore fields;
   sm::border::CellAverager cellFields;
   MeshFrame frame;
@@ -170,14 +171,16 @@ Image Renderer::Impl::render(const RenderSettings& s) {
   rs.transferFunction.lo = lo;
   rs.transferFunction.hi = hi;
   sm::render::FrameResult result;
-  group.runOrAbort([&] { result = renderer->render(rs); });
+  group.runOrAbort([&] { result = renderer->render(rs, std::move(pixels)); });
   frameMs = timer.seconds() * 1e3;
   Image img;
-  if (group.rank() != 0) return img;
-  img.width = s.width;
-  img.height = s.height;
-  img.rgba.resize(result.pixels.size() * 4);
-  std::memcpy(img.rgba.data(), result.pixels.data(), img.rgba.size() * sizeof(float));
+  if (group.rank() == 0) {
+    img.width = s.width;
+    img.height = s.height;
+    img.rgba.resize(result.pixels.size() * 4);
+    std::memcpy(img.rgba.data(), result.pixels.data(), img.rgba.size() * sizeof(float));
+  }
+  pixels = std::move(result.pixels);
   return img;
 }
 

@@ -199,7 +199,7 @@ FrameResult Renderer::renderRays(const RenderSettings& settings,
   return r;
 }
 
-FrameResult Renderer::render(const RenderSettings& s) {
+FrameResult Renderer::render(const RenderSettings& s, std::vector<glm::vec4> reuse) {
   auto t0 = std::chrono::steady_clock::now();
   const std::vector<glm::vec4> table = deviceTable(s.transferFunction);
   if (!transferFunction_.valid() || transferFunction_.size() < table.size() * sizeof(glm::vec4))
@@ -222,7 +222,8 @@ FrameResult Renderer::render(const RenderSettings& s) {
   else
     renderFixed(s, p, out);
   auto tc = std::chrono::steady_clock::now();
-  out.pixels = compositor_.composite(s.compositeMethod);
+  out.pixels = std::move(reuse);
+  compositor_.composite(s.compositeMethod, out.pixels);
   out.composite = compositor_.stats();
   out.timings.compositeMs = msSince(tc);
   stats_.download(&out.counters, sizeof out.counters);

@@ -45,7 +45,11 @@ struct FrameResult {
 class Renderer {
  public:
   Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor);
-  FrameResult render(const RenderSettings& settings);
+  // `reuse`: an earlier frame's pixels, whose storage this frame's image takes over. A frame loop
+  // hands each frame's pixels back (`frame = r.render(s, std::move(frame.pixels))`): a fresh
+  // image per frame costs its page faults every frame once it is over glibc's 32 MiB mapping
+  // threshold (1448² and up), 35 ms at 2048² on the benchmark machine.
+  FrameResult render(const RenderSettings& settings, std::vector<glm::vec4> reuse = {});
   // Renders explicit rays (world coordinates) instead of camera rays: ray i is pixel (i, 0) of a
   // rays.size() x 1 image (the compositor must have that size). For tests aiming at vertices/edges.
   FrameResult renderRays(const RenderSettings& settings, const std::vector<WorldRay>& rays);

@@ -70,7 +70,7 @@ GroupFrame RankGroup::render(const render::RenderSettings& settings,
     for (int i = 0; i <= runs; ++i) {  // frame 0 is cold (pipelines compile on first dispatch)
       comm.barrier();
       Timer t;
-      frame = renderer.render(settings);
+      frame = renderer.render(settings, std::move(frame.pixels));
       if (i > 0) ms[r].push_back(t.ms());
     }
     fragments[r] = frame.counters.fragments;

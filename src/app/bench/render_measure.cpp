@@ -30,7 +30,7 @@ RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& 
   for (int i = 0; i <= runs; ++i) {
     Timer wall;
     const double cpu0 = processCpuMs();
-    frame = renderer.render(s);
+    frame = renderer.render(s, std::move(frame.pixels));
     const double cpu = processCpuMs() - cpu0;
     // Wall clock around render() (FrameTimings::totalMs is the same span measured inside).
     const double ms = wall.ms();

@@ -158,9 +158,9 @@ void ViewScene::applyState(ViewState& state) {
   }
 }
 
-render::FrameResult ViewScene::render(ViewState& state) {
+render::FrameResult ViewScene::render(ViewState& state, std::vector<glm::vec4> reuse) {
   applyState(state);
-  return renderer_->render(settings_);
+  return renderer_->render(settings_, std::move(reuse));
 }
 
 }  // namespace sm::view

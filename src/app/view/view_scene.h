@@ -40,7 +40,8 @@ class ViewScene {
 
   // Brings the GPU side in line with `state` (normalising its step into the field's steps) and
   // renders; collective.
-  render::FrameResult render(ViewState& state);
+  // `reuse`: storage for the image (Renderer::render).
+  render::FrameResult render(ViewState& state, std::vector<glm::vec4> reuse = {});
 
   const vk::Context& context() const { return *ctx_; }
   const render::GpuScene& gpu() const { return *gpu_; }

@@ -70,6 +70,7 @@ class Viewer {
   ViewState state_;
   LocalRequests local_;
   std::vector<glm::vec4> lastPixels_;
+  std::vector<glm::vec4> sparePixels_;  // the frame before's, handed to the next render
   int lastWidth_ = 0, lastHeight_ = 0;
   uint32_t framesShown_ = 0;
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
@@ -106,7 +107,7 @@ void Viewer::run() {
     if (root()) gatherInput();
     coll_.broadcast(&state_, sizeof state_);
     if (state_.quit) break;
-    render::FrameResult frame = scene_->render(state_);
+    render::FrameResult frame = scene_->render(state_, std::move(sparePixels_));
     const uint64_t fragments = coll_.sum(uint64_t(frame.fragments));
     if (root()) {
       renderMs_ = frame.timings.totalMs;
@@ -150,6 +151,7 @@ void Viewer::applyEvents(std::vector<InputEvent>& events) {
 }
 
 void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
+  sparePixels_ = std::move(lastPixels_);  // the next frame's storage
   lastPixels_ = std::move(frame.pixels);
   lastWidth_ = state_.width;
   lastHeight_ = state_.height;
