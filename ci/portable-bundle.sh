@@ -8,7 +8,9 @@
 #
 # OUT.tar is written uncompressed (what the test does; xz takes two minutes on two cores).
 #
-# Run it with ci/portable-run.sh on the other machine (see docs/BENCHMARKS.md, "On a GPU").
+# On the other machine: shellmarch/run PROGRAM [ARGS...] runs a packed program, and
+# ci/portable-gpu-check.sh runs the GPU test cases and `bench render` (docs/BENCHMARKS.md, "On a
+# GPU").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -16,14 +18,14 @@ out=${2:-out/shellmarch-portable.tar.xz}
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 root=$stage/shellmarch
-mkdir -p "$root/bin" "$root/lib" "$root/layers" "$root/share/shellmarch"
+mkdir -p "$root/bin" "$root/lib" "$root/layers" "$root/share/shellmarch/bench"
 
 # The app, and the test binaries whose cases need a Vulkan device (ctest label "gpu").
 bins=("$build/src/app/shellmarch" "$build/tests/render/test_render" "$build/tests/vk/test_vk"
   "$build/tests/compositor/test_compositor" "$build/tests/insitu/test_insitu"
   "$build/compositor/shellmarch_bench_compositor" "$build/tests/compositor/test_compositor_mpi")
 cp "${bins[@]}" "$root/bin/"
-cp -r src/app/bench/*.py "$root/share/shellmarch/" 2>/dev/null || true
+cp src/app/bench/*.py "$root/share/shellmarch/bench/"  # beside bin/, where bench looks
 command -v vulkaninfo >/dev/null && cp "$(command -v vulkaninfo)" "$root/bin/"
 
 layer_json=/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json
@@ -49,7 +51,9 @@ for f in ld-linux-x86-64.so.2 libc.so.6 libm.so.6 libdl.so.2 libpthread.so.0 lib
 done
 mv "$root"/lib/libmpi*.so.* "$root"/lib/libopen-rte.so.* "$root"/lib/libopen-pal.so.* \
   "$root"/lib/libhwloc.so.* "$root"/lib/libevent*.so.* "$root/mpi/"
-ldd --version | head -1 | grep -oE '[0-9]+\.[0-9]+$' > "$root/glibc/version"
+# getconf, not `ldd --version | head`: ldd goes on writing after head exits, and its SIGPIPE ended
+# this script (pipefail) about one time in three.
+getconf GNU_LIBC_VERSION | awk '{print $2}' > "$root/glibc/version"
 # The C++ runtime apart too: a machine's own libmpi_cxx may need a newer one than ours.
 mkdir -p "$root/cxx"
 mv "$root/lib/libstdc++.so.6" "$root/lib/libgcc_s.so.1" "$root/cxx/"
@@ -71,24 +75,38 @@ done > "$root/gpu-tests.txt"
 
 cat > "$root/run" <<'RUN'
 #!/usr/bin/env bash
-# run PROGRAM [ARGS...]: runs bin/PROGRAM with the packed libraries.
-# - glibc: the machine's when it is at least as new as the one packed (its loader then also loads
-#   the machine's Vulkan driver as that driver expects), else the packed loader and glibc.
-# - Open MPI: the machine's libmpi.so.40 (4.x, the same ABI) when it has one, so that its
-#   mpiexec and components match; else the packed one (single process only).
-# - libstdc++: the machine's when it is new enough (its libmpi_cxx may need it), else ours.
-# The machine's library path comes after ours, so that its Vulkan driver is found.
-# SHELLMARCH_PORTABLE_PACKED=1 takes the packed glibc, C++ runtime and Open MPI regardless.
+# run PROGRAM [ARGS...]: runs bin/PROGRAM with the packed libraries, or the machine's where they
+# fit (SHELLMARCH_PORTABLE_PACKED=1 takes the packed ones regardless):
+# - Open MPI: the machine's libmpi.so.40 (4.x, the same ABI) when its loader would find one (in
+#   LD_LIBRARY_PATH, as `module load` sets it, beside its mpiexec, or in ldconfig's cache), so
+#   that its mpiexec and components match; else the packed one (single process only).
+# - libstdc++: the machine's when it has every symbol version the programs need.
+# - glibc: the machine's when it is at least as new as the packed one, else the packed loader
+#   and glibc; then processes the program starts (mpiexec's) do not get them.
+# Ours come before the machine's LD_LIBRARY_PATH, which must still find its Vulkan driver.
 b=$(cd "$(dirname "$0")" && pwd)
 packed=${SHELLMARCH_PORTABLE_PACKED:-0}
 export VK_LAYER_PATH=$b/layers${VK_LAYER_PATH:+:$VK_LAYER_PATH}
+cache=$( (ldconfig -p || /sbin/ldconfig -p) 2>/dev/null)
+machineHas() {  # machineHas LIB: the machine's loader would find LIB
+  local d
+  local IFS=:
+  for d in $LD_LIBRARY_PATH ${mpiexecLib:-}; do [ -n "$d" ] && [ -e "$d/$1" ] && return 0; done
+  awk -v lib="$1" '$1 == lib { found = 1 } END { exit !found }' <<<"$cache"
+}
+mpiexecLib=
+if command -v mpiexec > /dev/null; then
+  mpiexecLib=$(dirname "$(dirname "$(readlink -f "$(command -v mpiexec)")")")/lib
+fi
 path=$b/lib
-[ "$packed" = 0 ] && ldconfig -p 2>/dev/null | grep -q 'libmpi.so.40 ' || path=$path:$b/mpi
-# The machine's C++ runtime when it has every symbol version ours were built against.
-cxx=$(ldconfig -p 2>/dev/null | awk '/libstdc\+\+\.so\.6 /{print $NF; exit}')
-[ "$packed" = 0 ] && [ -n "$cxx" ] && grep -qaF "$(cat "$b/cxx/version")" "$cxx" || path=$path:$b/cxx
-have=$(ldd --version 2>/dev/null | head -1 | grep -oE '[0-9]+\.[0-9]+$')
-if [ "$packed" = 0 ] && [ -n "$have" ] && [ "$(printf '%s\n%s\n' "$(cat "$b/glibc/version")" "$have" | sort -V | head -1)" = "$(cat "$b/glibc/version")" ]; then
+if [ "$packed" != 0 ] || ! machineHas libmpi.so.40; then path=$path:$b/mpi; fi
+cxx=$(awk '/libstdc\+\+\.so\.6 .*x86-64/{print $NF; exit}' <<<"$cache")
+if [ "$packed" != 0 ] || [ -z "$cxx" ] || ! grep -qaF "$(cat "$b/cxx/version")" "$cxx"; then
+  path=$path:$b/cxx
+fi
+have=$(getconf GNU_LIBC_VERSION 2>/dev/null | awk '{print $2}')
+want=$(cat "$b/glibc/version")
+if [ "$packed" = 0 ] && [ -n "$have" ] && [ "$(printf '%s\n%s\n' "$want" "$have" | sort -V | head -1)" = "$want" ]; then
   export LD_LIBRARY_PATH=$path${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
   exec "$b/bin/$1" "${@:2}"
 fi

@@ -180,6 +180,20 @@ void holdDriversLoaded() {
   static Holder held;
 }
 
+// vkCreateInstance's result, in words where the raw code misleads: the loader answers
+// VK_ERROR_INCOMPATIBLE_DRIVER when it found no driver it could load (or only ones older than the
+// API version asked for), which reads like a version mismatch.
+void checkInstanceCreated(VkResult made) {
+  if (made == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw VulkanError(
+        "no Vulkan driver could be loaded, or none supports Vulkan 1.2 (vkCreateInstance: "
+        "VK_ERROR_INCOMPATIBLE_DRIVER); install one (on Debian 12: mesa-vulkan-drivers from "
+        "bookworm-backports, for lavapipe) or point VK_DRIVER_FILES at the driver's manifest; "
+        "VK_LOADER_DEBUG=driver tells why",
+        made);
+  SM_VK(made);
+}
+
 VkInstance plainInstance() {
   holdDriversLoaded();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -188,7 +202,7 @@ VkInstance plainInstance() {
   VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ci.pApplicationInfo = &app;
   VkInstance inst = VK_NULL_HANDLE;
-  SM_VK(vkCreateInstance(&ci, nullptr, &inst));
+  checkInstanceCreated(vkCreateInstance(&ci, nullptr, &inst));
   return inst;
 }
 
@@ -296,16 +310,7 @@ void Context::createInstance(const ContextOptions& o) {
     features.pNext = &mci;
     ci.pNext = &features;
   }
-  const VkResult made = vkCreateInstance(&ci, nullptr, &instance_);
-  // The loader answers this when it found no driver it could load: say so in words, since the
-  // raw code reads like a version mismatch.
-  if (made == VK_ERROR_INCOMPATIBLE_DRIVER)
-    throw VulkanError(
-        "no Vulkan driver could be loaded (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
-        "install one (on Debian 12: mesa-vulkan-drivers from bookworm-backports, for lavapipe) "
-        "or point VK_DRIVER_FILES at the driver's manifest; VK_LOADER_DEBUG=driver tells why",
-        made);
-  SM_VK(made);
+  checkInstanceCreated(vkCreateInstance(&ci, nullptr, &instance_));
   if (validation_ && debugUtils_) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));

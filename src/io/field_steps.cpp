@@ -99,9 +99,6 @@ void checkSameSteps(const std::string& path, const std::string& piece,
     if (it->steps != f.steps)
       throw FileError(path, "piece '", piece, "' has ", it->steps, " time steps of field '", f.name,
                       "', the first piece ", f.steps);
-    if (it->components != f.components)
-      throw FileError(path, "piece '", piece, "' holds '", f.name, "' with ", it->components,
-                      " components, the first piece with ", f.components);
   }
   if (other.size() != first.size())
     throw FileError(path, "piece '", piece, "' has ", other.size(),

@@ -25,8 +25,22 @@ SHELLMARCH_PORTABLE_PACKED=1 LD_DEBUG=libs "$run" shellmarch --help > /dev/null 
 check "the packed glibc is the one loaded" grep -q "init: $work/x/shellmarch/glibc/libc.so.6" ld.log
 SHELLMARCH_PORTABLE_PACKED=1 LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld-cxx.log
 check "the packed C++ runtime is the one loaded" grep -q "init: $work/x/shellmarch/cxx/libstdc++.so.6" ld-cxx.log
+check "the validation layer is packed" test -f x/shellmarch/lib/libVkLayer_khronos_validation.so
 check "the packed validation layer loads" env SHELLMARCH_VALIDATION=1 SHELLMARCH_PORTABLE_PACKED=1 "$run" test_vk \
   --gtest_filter=Vk.ValidationIsOnInTests
+# Open MPI: the machine's when its loader finds libmpi.so.40 (here in ldconfig's cache), also
+# from LD_LIBRARY_PATH as `module load` sets it; the packed one when forced.
+sysmpi=$( (ldconfig -p || /sbin/ldconfig -p) 2>/dev/null | awk '$1 == "libmpi.so.40" { print $NF; exit }')
+LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld-mpi.log
+check "the machine's Open MPI is used" grep -q "init: $sysmpi" ld-mpi.log
+SHELLMARCH_PORTABLE_PACKED=1 LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld-mpi-packed.log
+check "the packed Open MPI is used when forced" grep -q "init: $work/x/shellmarch/mpi/libmpi.so.40" \
+  ld-mpi-packed.log
+mkdir -p module/lib && cp -L "$sysmpi" "$(dirname "$sysmpi")"/libopen-{pal,rte}.so.40 module/lib/
+LD_LIBRARY_PATH=$work/module/lib LD_DEBUG=libs "$run" shellmarch --help > /dev/null 2> ld-mpi-module.log
+check "an Open MPI in LD_LIBRARY_PATH (module load) is used" \
+  grep -q "init: $work/module/lib/libmpi.so.40" ld-mpi-module.log
+check "no C++ MPI bindings are needed" bash -c "! grep -q libmpi_cxx ld-mpi.log"
 check "the GPU cases are listed for portable-gpu-check.sh" grep -q "^test_render .*Slab.TetGrid" x/shellmarch/gpu-tests.txt
 [ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
-rm -rf b.tar x  # 300 MB; kept when a check failed
+rm -rf b.tar x module  # 300 MB; kept when a check failed

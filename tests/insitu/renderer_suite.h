@@ -15,7 +15,9 @@ class RendererSuite : public ::testing::Test {
   static void SetUpTestSuite() { vis_ = std::make_unique<shellmarch::insitu::Renderer>(); }
   static void TearDownTestSuite() {
     // Absent when SetUpTestSuite threw (no usable device): its failure is already reported.
-    if (vis_) EXPECT_EQ(vis_->stats().validationErrors, 0u);
+    if (vis_) {
+      EXPECT_EQ(vis_->stats().validationErrors, 0u);
+    }
     vis_.reset();
   }
   static inline std::unique_ptr<shellmarch::insitu::Renderer> vis_;
