@@ -32,24 +32,35 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::string& fi
   return renderOnGpu(input, values, settings, options);
 }
 
+namespace {
+
+prep::PreparedRank prepared(const mesh::UnstructuredMesh& input, bool compact) {
+  mesh::UnstructuredMesh m = input;
+  return prep::prepareRank(m, prep::makeGlobalFrame(m.bounds()), prep::PrepOptions{compact}).rank;
+}
+
+}  // namespace
+
+RenderRig::RenderRig(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
+                     int width, int height, const GpuRenderOptions& options)
+    : prepared(test::prepared(mesh, options.compact)),
+      scene(ctx, prepared, options.shell),
+      compositor(ctx, nullptr, width, height, options.lists),
+      renderer(ctx, scene, compositor) {
+  scene.setScalars(prep::gatherScalars(prepared, values));
+}
+
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::vector<float>& values,
                       const render::RenderSettings& settings, const GpuRenderOptions& options) {
-  mesh::UnstructuredMesh m = input;
-  auto frame = prep::makeGlobalFrame(m.bounds());
-  auto prepared = prep::prepareRank(m, frame, prep::PrepOptions{options.compact}).rank;
-  vk::Context ctx;
-  render::GpuScene scene(ctx, prepared, options.shell);
-  scene.setScalars(prep::gatherScalars(prepared, values));
-  comp::DeepCompositor compositor(ctx, nullptr, settings.width, settings.height, options.lists);
-  render::Renderer renderer(ctx, scene, compositor);
+  RenderRig rig(input, values, settings.width, settings.height, options);
   GpuRender out;
-  out.frame = renderer.render(settings);
+  out.frame = rig.renderer.render(settings);
   out.image = scene::Image(settings.width, settings.height);
   out.image.pixels = out.frame.pixels;
-  out.segments = renderer.lastSegments();
-  out.fragments = renderer.lastFragments();
-  out.validationErrors = ctx.validationErrors();
-  out.validationWarnings = ctx.validationWarnings();
+  out.segments = rig.renderer.lastSegments();
+  out.fragments = rig.renderer.lastFragments();
+  out.validationErrors = rig.ctx.validationErrors();
+  out.validationWarnings = rig.ctx.validationWarnings();
   return out;
 }
 

@@ -7,8 +7,10 @@
 
 #include "compositor/deep_compositor.h"
 #include "mesh/unstructured_mesh.h"
+#include "prep/prepare.h"
 #include "render/renderer.h"
 #include "scene/image.h"
+#include "vk/context.h"
 
 namespace sm::test {
 
@@ -24,6 +26,19 @@ struct GpuRenderOptions {
   bool compact = true;
   render::ShellGeometry shell = render::ShellGeometry::Boxes;
   comp::CompositorOptions lists;
+};
+
+// One rank's renderer of `mesh` with per-point `values`, kept for several frames (a test that
+// renders again, or changes what the device holds between frames). Its context is made with
+// whatever SHELLMARCH_* environment is set when the rig is.
+struct RenderRig {
+  RenderRig(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values, int width,
+            int height, const GpuRenderOptions& options = {});
+  vk::Context ctx;
+  prep::PreparedRank prepared;
+  render::GpuScene scene;
+  comp::DeepCompositor compositor;
+  render::Renderer renderer;
 };
 
 // Renders `mesh` (one rank) with the scalars of field `field`, step 0 (zeros if absent).

@@ -223,13 +223,9 @@ TEST(TracingModes, NoRoomForTheCacheFallsBackToStageSplit) {
   ASSERT_TRUE(expected.frame.timings.fused);
   ::setenv("SHELLMARCH_DEVICE_MEMORY_LIMIT", "64M", 1);
   {
-    vk::Context ctx;
-    mesh::UnstructuredMesh mm = m;
-    auto prepared = prep::prepareRank(mm, prep::makeGlobalFrame(mm.bounds()), {}).rank;
-    GpuScene scene(ctx, prepared);
-    scene.setScalars(prep::gatherScalars(prepared, f));
-    comp::DeepCompositor compositor(ctx, nullptr, s.width, s.height, {});
-    Renderer renderer(ctx, scene, compositor);
+    test::RenderRig rig(m, f, s.width, s.height);
+    vk::Context& ctx = rig.ctx;
+    Renderer& renderer = rig.renderer;
     const uint64_t free = ctx.deviceMemoryLimit() - ctx.deviceMemoryInUse();
     ASSERT_GT(free, uint64_t(400) << 10);
     vk::Buffer hog(ctx, free - (uint64_t(400) << 10), vk::kStorageUsage, vk::MemoryUse::Device,
@@ -261,18 +257,12 @@ TEST(FrameStorage, AnEarlierFramesPixelsAreTakenOverWhateverTheyHold) {
   s.height = 24;
   const size_t n = size_t(s.width) * s.height;
   auto expected = test::renderOnGpu(m, f, s);
-  vk::Context ctx;
-  mesh::UnstructuredMesh mm = m;
-  auto prepared = prep::prepareRank(mm, prep::makeGlobalFrame(mm.bounds()), {}).rank;
-  GpuScene scene(ctx, prepared);
-  scene.setScalars(prep::gatherScalars(prepared, f));
-  comp::DeepCompositor compositor(ctx, nullptr, s.width, s.height, {});
-  Renderer renderer(ctx, scene, compositor);
+  test::RenderRig rig(m, f, s.width, s.height);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (size_t size : {n, 2 * n, size_t(10), size_t(0)}) {
     std::vector<glm::vec4> reuse(size, glm::vec4(nan));
     const glm::vec4* storage = reuse.data();
-    FrameResult r = renderer.render(s, std::move(reuse));
+    FrameResult r = rig.renderer.render(s, std::move(reuse));
     ASSERT_EQ(r.pixels.size(), n) << "reused storage of " << size;
     EXPECT_TRUE(sameBits(r.pixels.data(), expected.image.pixels.data(), n * sizeof(glm::vec4)))
         << "reused storage of " << size;
@@ -280,7 +270,7 @@ TEST(FrameStorage, AnEarlierFramesPixelsAreTakenOverWhateverTheyHold) {
       EXPECT_EQ(r.pixels.data(), storage) << "reused storage of " << size;
     }
   }
-  EXPECT_EQ(ctx.validationErrors(), 0u);
+  EXPECT_EQ(rig.ctx.validationErrors(), 0u);
 }
 
 }  // namespace
