@@ -28,7 +28,9 @@ std::vector<FieldStepCount> countSteps(const std::string& source,
     auto it = std::find_if(fields.begin(), fields.end(),
                            [&](const FieldStepCount& f) { return f.name == l.field; });
     if (it == fields.end()) {
-      fields.push_back({l.field, 0, false, uint32_t(arrays.at(l.array).components)});
+      // One component of an array ("p[1]") reads whatever the array's count: not compared.
+      fields.push_back(
+          {l.field, 0, false, l.component < 0 ? uint32_t(arrays.at(l.array).components) : 0u});
       steps.emplace_back();
       it = fields.end() - 1;
     }

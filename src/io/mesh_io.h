@@ -85,7 +85,8 @@ struct FieldStepCount {
   std::string name;
   uint64_t steps = 0;
   bool cellData = false;    // read as cell data (named by the request), averaged onto the points
-  uint32_t components = 0;  // of the array it is read from (a vector's magnitude); 0: not known
+  uint32_t components = 0;  // of the array read whole (a vector's magnitude); 0: one component
+                            // of it ("p[1]"), or not known
 };
 
 // The point fields readMesh(path, options) loads, with their step counts, without loading them:

@@ -319,6 +319,34 @@ TEST(Series, AStepWithAnotherNumberOfComponentsIsRefused) {
     ASSERT_EQ(m.fields.size(), 1u) << kind;
     EXPECT_EQ(m.fields[0].numSteps(), 2u) << kind;
   }
+  // One component of a point array reads from steps with 3 and 4 components alike; the array
+  // whole does not, and a component past a step's is named by that step.
+  writeText(dir + "/p4.vtu", withComponents(4, false));
+  writeText(dir + "/p34.pvd", head +
+                                  "<DataSet timestep=\"0\" file=\"p3.vtu\"/>"
+                                  "<DataSet timestep=\"1\" file=\"p4.vtu\"/>" +
+                                  tail);
+  ReadOptions one;
+  one.fields = {"p[1]"};
+  const mesh::UnstructuredMesh m = readMesh(dir + "/p34.pvd", one);
+  ASSERT_EQ(m.fields.size(), 1u);
+  EXPECT_EQ(m.fields[0].numSteps(), 2u);
+  ReadOptions whole;
+  whole.fields = {"p"};
+  EXPECT_NE(fileErrorOf([&] {
+              listFieldSteps(dir + "/p34.pvd", whole);
+            }).find("holds 'p' with 4 components, step 0 with 3"),
+            std::string::npos);
+  writeText(dir + "/p43.pvd", head +
+                                  "<DataSet timestep=\"0\" file=\"p4.vtu\"/>"
+                                  "<DataSet timestep=\"1\" file=\"p3.vtu\"/>" +
+                                  tail);
+  ReadOptions last;
+  last.fields = {"p[3]"};
+  EXPECT_NE(fileErrorOf([&] {
+              listFieldSteps(dir + "/p43.pvd", last);
+            }).find("p3.vtu: field 'p[3]': point array 'p' has 3 components"),
+            std::string::npos);
 }
 
 TEST(Series, BadIndexesAndStepsAreNamed) {
