@@ -292,59 +292,49 @@ TEST(Series, AStepWithAnotherNumberOfComponentsIsRefused) {
         cellData ? "<CellData>" + array + "</CellData>" : "<PointData>" + array + "</PointData>");
     return x;
   };
-  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
-  const std::string tail = "</Collection></VTKFile>";
+  // A series of two steps, the files named.
+  auto series = [&](const std::string& name, const std::string& first, const std::string& second) {
+    writeText(dir + "/" + name,
+              "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"" + first +
+                  "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/></Collection></VTKFile>");
+    return dir + "/" + name;
+  };
+  auto asking = [](const std::string& field) {
+    ReadOptions o;
+    o.fields = {field};
+    return o;
+  };
   for (bool cellData : {false, true}) {
     const std::string kind = cellData ? "c" : "p";
     writeText(dir + "/" + kind + "1.vtu", withComponents(1, cellData));
     writeText(dir + "/" + kind + "3.vtu", withComponents(3, cellData));
-    writeText(dir + "/" + kind + ".pvd", head + "<DataSet timestep=\"0\" file=\"" + kind +
-                                             "1.vtu\"/><DataSet timestep=\"1\" file=\"" + kind +
-                                             "3.vtu\"/>" + tail);
-    writeText(dir + "/" + kind + "-same.pvd", head + "<DataSet timestep=\"0\" file=\"" + kind +
-                                                  "3.vtu\"/><DataSet timestep=\"1\" file=\"" +
-                                                  kind + "3.vtu\"/>" + tail);
-    ReadOptions o;
-    o.fields = {"p"};
+    const std::string grown = series(kind + ".pvd", kind + "1.vtu", kind + "3.vtu");
     const std::string want =
         "step 1 ('" + dir + "/" + kind + "3.vtu') holds 'p' with 3 components, step 0 with 1";
-    EXPECT_NE(fileErrorOf([&] { listFieldSteps(dir + "/" + kind + ".pvd", o); }).find(want),
+    EXPECT_NE(fileErrorOf([&] { listFieldSteps(grown, asking("p")); }).find(want),
               std::string::npos)
         << kind;
-    EXPECT_NE(fileErrorOf([&] { readMesh(dir + "/" + kind + ".pvd", o); }).find(want),
-              std::string::npos)
+    EXPECT_NE(fileErrorOf([&] { readMesh(grown, asking("p")); }).find(want), std::string::npos)
         << kind;
     // The same number of components in every step reads (the magnitude, both steps).
-    const mesh::UnstructuredMesh m = readMesh(dir + "/" + kind + "-same.pvd", o);
+    const mesh::UnstructuredMesh m =
+        readMesh(series(kind + "-same.pvd", kind + "3.vtu", kind + "3.vtu"), asking("p"));
     ASSERT_EQ(m.fields.size(), 1u) << kind;
     EXPECT_EQ(m.fields[0].numSteps(), 2u) << kind;
   }
   // One component of a point array reads from steps with 3 and 4 components alike; the array
   // whole does not, and a component past a step's is named by that step.
   writeText(dir + "/p4.vtu", withComponents(4, false));
-  writeText(dir + "/p34.pvd", head +
-                                  "<DataSet timestep=\"0\" file=\"p3.vtu\"/>"
-                                  "<DataSet timestep=\"1\" file=\"p4.vtu\"/>" +
-                                  tail);
-  ReadOptions one;
-  one.fields = {"p[1]"};
-  const mesh::UnstructuredMesh m = readMesh(dir + "/p34.pvd", one);
+  const std::string p34 = series("p34.pvd", "p3.vtu", "p4.vtu");
+  const mesh::UnstructuredMesh m = readMesh(p34, asking("p[1]"));
   ASSERT_EQ(m.fields.size(), 1u);
   EXPECT_EQ(m.fields[0].numSteps(), 2u);
-  ReadOptions whole;
-  whole.fields = {"p"};
   EXPECT_NE(fileErrorOf([&] {
-              listFieldSteps(dir + "/p34.pvd", whole);
+              listFieldSteps(p34, asking("p"));
             }).find("holds 'p' with 4 components, step 0 with 3"),
             std::string::npos);
-  writeText(dir + "/p43.pvd", head +
-                                  "<DataSet timestep=\"0\" file=\"p4.vtu\"/>"
-                                  "<DataSet timestep=\"1\" file=\"p3.vtu\"/>" +
-                                  tail);
-  ReadOptions last;
-  last.fields = {"p[3]"};
   EXPECT_NE(fileErrorOf([&] {
-              listFieldSteps(dir + "/p43.pvd", last);
+              listFieldSteps(series("p43.pvd", "p4.vtu", "p3.vtu"), asking("p[3]"));
             }).find("p3.vtu: field 'p[3]': point array 'p' has 3 components"),
             std::string::npos);
 }
