@@ -105,6 +105,56 @@ for n in 1 3; do
   if ls grown${n}_*.pfm >/dev/null 2>&1; then fail "a frame was written ($n rank(s))"; fi
 done
 
+# A step whose points moved (the same counts: a moving mesh) is refused too, by the range pass that
+# reads every step before the first frame; with --range (no such pass) when the step is read, its
+# frame and later ones not written.
+mkdir -p moved && cp -r series series.pvd moved/
+python3 - moved/series/series_t2/series_t2_3.vtu <<'PY'
+import re, struct, sys, zlib
+path = sys.argv[1]
+data = open(path, 'rb').read()
+head, _, rest = data.partition(b'<AppendedData encoding="raw">')
+start = rest.index(b'_') + 1
+blob, tail = rest[start:], rest[rest.index(b'</AppendedData>'):]
+arrays = [(m.group(1), int(m.group(2))) for m in re.finditer(rb'Name="([^"]+)"[^>]*offset="(\d+)"', head)]
+ends = sorted(o for _, o in arrays) + [len(blob) - len(tail)]
+out, offsets = b'', {}
+for name, offset in sorted(arrays, key=lambda a: a[1]):
+    raw = blob[offset:ends[ends.index(offset) + 1]]
+    if name == b'Points':  # VTK's zlib blocks: count, block size, last size, sizes, then blocks
+        n, bs, last = struct.unpack_from('<3Q', raw)
+        sizes = struct.unpack_from('<%dQ' % n, raw, 24)
+        at, values = 24 + 8 * n, b''
+        for size in sizes:
+            values += zlib.decompress(raw[at:at + size]); at += size
+        xyz = list(struct.unpack('<%dd' % (len(values) // 8), values))
+        xyz[0::3] = [x + 0.05 for x in xyz[0::3]]
+        block = zlib.compress(struct.pack('<%dd' % len(xyz), *xyz))
+        raw = struct.pack('<4Q', 1, len(xyz) * 8, len(xyz) * 8, len(block)) + block
+    offsets[name] = len(out)
+    out += raw
+for name, offset in offsets.items():
+    head = re.sub(rb'(Name="' + re.escape(name) + rb'"[^>]*offset=")\d+"', rb'\g<1>%d"' % offset, head)
+open(path, 'wb').write(head + b'<AppendedData encoding="raw">\n   _' + out + b'\n  ' + tail)
+PY
+moving=(--field vortex --size ${W}x${H} --step $STEP --unit-distance $UNIT --colormap $CMAP
+        --eye $EYE --at $AT --up $UP --fovy $FOVY)
+for n in 1 3; do
+  if mpi $n "$sm" render moved/series.pvd "${moving[@]}" --time all --out moved$n.pfm >moved$n.log 2>&1; then
+    fail "a series whose step 2 moved its points rendered on $n rank(s)"
+  fi
+  grep -q "series.pvd: step 2 .*series_t2_3.vtu'.* at (.*), step 0 at (.*): every step of a series must be the same mesh" moved$n.log ||
+    { cat moved$n.log; fail "no message naming the series, the step and the point ($n rank(s))"; }
+  if ls moved${n}_*.pfm >/dev/null 2>&1; then fail "a frame was written ($n rank(s))"; fi
+done
+if "$sm" render moved/series.pvd "${view[@]}" --time all --out movedr.pfm >movedr.log 2>&1; then
+  fail "a series whose step 2 moved its points rendered with --range"
+fi
+grep -q "series.pvd: step 2 .* every step of a series must be the same mesh" movedr.log || { cat movedr.log; fail "no message with --range"; }
+cmp movedr_0001.pfm series1_0001.pfm || fail "the frame before the moved step is not the series' own"
+if ls movedr_000[23].pfm >/dev/null 2>&1; then fail "a frame of the moved step or later was written"; fi
+"$sm" render moved/series/series_t2.pvtu "${view[@]}" --out moved_alone.pfm  # the step's own mesh
+
 # Pieces with different step counts are refused, naming the file and the counts, whether one
 # rank reads them all or each rank its own: the outcome must not depend on the rank count. No
 # frame is written.
