@@ -15,7 +15,7 @@
 #include "common/file_util.h"
 #include "io/file_bytes.h"
 #include "io/readers.h"
-#include "io/series_points.h"
+#include "io/series_same_mesh.h"
 
 namespace sm::io {
 namespace {
@@ -199,8 +199,7 @@ void appendStep(const std::string& path, uint64_t k, const SeriesStep& s, mesh::
     throw FileError(path, stepName(k, s), " has ", next.numPoints(), " points and ",
                     next.numCells(), " cells, step 0 ", m.numPoints(), " and ", m.numCells(),
                     ": every step of a series must be the same mesh");
-  if (const std::optional<uint64_t> i = firstMovedPoint(m.points, next.points))
-    throwMovedPoint(path, k, s, concat("point ", *i), m.points[*i], next.points[*i]);
+  checkSameMesh(path, k, s, stepMeshOf(m), stepMeshOf(next));
   for (mesh::Field& f : m.fields) {
     auto g = std::find_if(next.fields.begin(), next.fields.end(),
                           [&](const mesh::Field& p) { return p.name == f.name; });
@@ -292,7 +291,7 @@ mesh::UnstructuredMesh readSeries(const std::string& path, const ReadOptions& op
       continue;
     }
     checkStep(path, steps, k, one, firstSizes);
-    checkSamePoints(path, steps, k, one);
+    checkSameMesh(path, steps, k, one);
     for (mesh::Field& f : m.fields)
       f.steps.push_back(readFieldStep(steps[k].file, f.name, 0, one, m.pointOrigin));
     for (mesh::CellField& f : m.cellFields)
@@ -338,7 +337,7 @@ const SeriesStep& checkedStepFile(const std::string& path, const std::string& fi
                     steps.size() - 1, "), not step ", step);
   if (step > 0 && readsStepsAlone(steps[step].file))
     checkSameSizes(path, steps, step, options, declaredSizes(steps[0].file, options));
-  checkSamePoints(path, steps, step, options);
+  checkSameMesh(path, steps, step, options);
   return steps[step];
 }
 

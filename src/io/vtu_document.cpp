@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "common/error.h"
+#include "common/hash.h"
 #include "io/text_scan.h"
 
 namespace sm::io {
@@ -166,6 +167,26 @@ NumericArray VtuDocument::decode(pugi::xml_node node, uint64_t tuples, const std
   if (p.storage.data())
     return NumericArray::owned(*type, comps, tuples, std::move(p.storage), format_.swap);
   return NumericArray::view(*type, comps, tuples, p.data, format_.swap);
+}
+
+uint64_t VtuDocument::encodedDigest(pugi::xml_node node) const {
+  Hasher h;
+  for (pugi::xml_attribute a : root().attributes()) h.str(a.name()).str(a.value());
+  for (pugi::xml_attribute a : node.attributes())
+    if (std::strcmp(a.name(), "offset") != 0) h.str(a.name()).str(a.value());
+  if (std::string_view(node.attribute("format").value()) != "appended")
+    return h.str(node.child_value()).digest();
+  const pugi::xml_attribute at = node.attribute("offset");
+  const uint64_t offset = at.as_ullong(~uint64_t(0));
+  if (!hasAppended_ || offset >= appended_.size()) return 0;
+  // The array's bytes end where the next one's begin (or with the file): its own header, which
+  // says where it ends, is part of what is compared.
+  uint64_t end = appended_.size();
+  for (pugi::xpath_node n : doc_.select_nodes("//DataArray[@format='appended']")) {
+    const uint64_t o = n.node().attribute("offset").as_ullong(0);
+    if (o > offset && o < end) end = o;
+  }
+  return h.bytes(appended_.data() + offset, end - offset).digest();
 }
 
 NumericArray VtuDocument::decodeAscii(pugi::xml_node node, ScalarType type, uint32_t comps,

@@ -37,6 +37,11 @@ class VtuDocument {
   // views the file where the data is raw and uncompressed.
   NumericArray decode(pugi::xml_node dataArray, uint64_t tuples, const std::string& what,
                       uint32_t components = 0) const;
+  // A digest of how a DataArray is stored: the file's format attributes, the array's attributes
+  // and its encoded bytes (text, or appended bytes up to the next array's), none decoded. Arrays
+  // with equal digests decode to the same values (equal values may be stored differently). 0 when
+  // its appended offset is not valid (decode names that).
+  uint64_t encodedDigest(pugi::xml_node dataArray) const;
   // NumberOfComponents (1 when absent), checked.
   uint32_t components(pugi::xml_node dataArray, const std::string& what) const;
   // A required non-negative integer attribute.

@@ -3,9 +3,14 @@
 // data; and every malformed index or step that does not fit named by file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <functional>
 
+#include "io/file_bytes.h"
 #include "io/mesh_io.h"
+#include "io/vtu_arrays.h"
+#include "io/vtu_document.h"
 #include "io_test_util.h"
 #include "support/test_support.h"
 
@@ -405,6 +410,137 @@ TEST(Series, AStepWhosePointsMovedIsRefused) {
   const std::string vtkWant = "step 1 ('" + dir + "/b.vtk') has point 4 at (1, 1, 2)";
   EXPECT_NE(fileErrorOf([&] { readMesh(vtk); }).find(vtkWant), std::string::npos);
   EXPECT_NE(fileErrorOf([&] { readFieldStep(vtk, "f", 1); }).find(vtkWant), std::string::npos);
+}
+
+TEST(Series, AStepWhoseCellsChangedIsRefused) {
+  const std::string dir = sm::test::outputDir("Series.Remeshed");
+  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
+  auto series = [&](const std::string& name, const std::string& first, const std::string& second) {
+    writeText(dir + "/" + name, head + "<DataSet timestep=\"0\" file=\"" + first +
+                                    "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/>" +
+                                    "</Collection></VTKFile>");
+    return dir + "/" + name;
+  };
+  auto edited = [](std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  auto refused = [](const std::function<void()>& f, const std::string& part) {
+    const std::string message = fileErrorOf(f);
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+    EXPECT_NE(message.find("every step of a series must be the same mesh, its cells joining the "
+                           "same points in the same order"),
+              std::string::npos)
+        << message;
+  };
+  ReadOptions p;
+  p.fields = {"p"};
+  // .vtu steps, points unchanged: the second tetrahedron's vertices turned (an even permutation,
+  // still a valid cell), the two cells swapped (a renumbering), a cell of another type.
+  const std::string cells = "0 1 2 3 1 2 3 4";
+  writeText(dir + "/a.vtu", twoTets(1, 3));
+  writeText(dir + "/turned.vtu", edited(twoTets(1, 3), cells, "0 1 2 3 2 3 1 4"));
+  writeText(dir + "/swapped.vtu", edited(twoTets(3, 1), cells, "1 2 3 4 0 1 2 3"));
+  writeText(dir + "/typed.vtu", edited(twoTets(1, 3), "10 10", "10 14"));
+  const std::string turned = series("turned.pvd", "a.vtu", "turned.vtu");
+  const std::string want = "turned.pvd: step 1 ('" + dir +
+                           "/turned.vtu') has cell 1 (tetrahedron: points 2 3 1 4), step 0 "
+                           "(tetrahedron: points 1 2 3 4): ";
+  refused([&] { readMesh(turned, p); }, want);
+  refused([&] { readCellFieldStep(turned, "p", 1); }, want);
+  EXPECT_EQ(readCellFieldStep(turned, "p", 0), (std::vector<float>{1, 3}));  // step 0 is itself
+  refused([&] { readMesh(series("swapped.pvd", "a.vtu", "swapped.vtu"), p); },
+          "has cell 0 (tetrahedron: points 1 2 3 4), step 0 (tetrahedron: points 0 1 2 3)");
+  refused([&] { readMesh(series("typed.pvd", "a.vtu", "typed.vtu"), p); },
+          "has cell 1 (pyramid: points 1 2 3 4), step 0 (tetrahedron: points 1 2 3 4)");
+  // The same cells written another way (another integer type, other spacing) are the same mesh.
+  std::string same =
+      edited(twoTets(2, 4), "Int64\" Name=\"connectivity", "Int32\" Name=\"connectivity");
+  writeText(dir + "/same.vtu", edited(same, cells, " 0 1 2 3\n1  2 3 4 "));
+  EXPECT_EQ(readMesh(series("same.pvd", "a.vtu", "same.vtu"), p).fields.at(0).numSteps(), 2u);
+  EXPECT_EQ(readCellFieldStep(dir + "/same.pvd", "p", 1), (std::vector<float>{2, 4}));
+
+  // .pvtu steps: a hexahedron of the last cluster turned about its axis (the same points); the
+  // cell is named by its piece, and a rank reading another piece alone reads on.
+  mesh::UnstructuredMesh mesh = test::makeTestMesh(3, 2);
+  std::erase_if(mesh.fields, [](const mesh::Field& f) { return f.numSteps() > 1; });  // one each
+  writePvtu(dir + "/m0.pvtu", mesh);
+  const size_t hex = mesh::typeIndex(mesh::CellType::Hex);
+  const auto last = std::find(mesh.clusters[hex].rbegin(), mesh.clusters[hex].rend(), 1);
+  ASSERT_NE(last, mesh.clusters[hex].rend()) << "the test mesh has a hexahedron in cluster 1";
+  uint32_t* h = mesh.cells[hex].data() + 8 * (mesh.clusters[hex].rend() - last - 1);
+  std::rotate(h, h + 1, h + 4);
+  std::rotate(h + 4, h + 5, h + 8);
+  writePvtu(dir + "/m1.pvtu", mesh);
+  const std::string pvtu = series("pvtu.pvd", "m0.pvtu", "m1.pvtu");
+  const std::string piece = "of piece '" + dir + "/m1/m1_1.vtu' (hexahedron: points ";
+  refused([&] { readMesh(pvtu); }, piece);
+  refused([&] { readFieldStep(pvtu, "f", 1); }, piece);
+  ReadOptions first;
+  first.pieces = {0};
+  EXPECT_EQ(readMesh(pvtu, first).fields.at(0).numSteps(), 2u);
+  EXPECT_NO_THROW(readFieldStep(pvtu, "f", 1, first));
+
+  // Legacy .vtk steps, read whole: compared in memory, streamed or not; named by type.
+  writeText(dir + "/a.vtk", legacyTwoTets(1));
+  writeText(dir + "/b.vtk", edited(legacyTwoTets(1), "4 1 2 3 4", "4 2 3 1 4"));
+  const std::string vtk = series("vtk.pvd", "a.vtk", "b.vtk");
+  const std::string vtkWant = "step 1 ('" + dir +
+                              "/b.vtk') has tetrahedron 1 (tetrahedron: points 2 3 1 4), step 0 "
+                              "(tetrahedron: points 1 2 3 4)";
+  refused([&] { readMesh(vtk); }, vtkWant);
+  refused([&] { readFieldStep(vtk, "f", 1); }, vtkWant);
+}
+
+// A series' steps are first compared by how their mesh arrays are stored: the digest must follow
+// the arrays' bytes wherever they sit in the appended data, and tell different bytes apart.
+TEST(Series, StoredMeshArraysAreComparedByTheirBytesWhereverTheySit) {
+  const std::string dir = sm::test::outputDir("Series.Encoded");
+  mesh::UnstructuredMesh m = test::makeTestMesh(3, 1);
+  writeVtu(dir + "/a.vtu", m);
+  std::reverse(m.fields.begin(), m.fields.end());  // other arrays' sizes before and after
+  m.fields.pop_back();
+  writeVtu(dir + "/b.vtu", m);
+  m.points.back().x += 0.25;
+  writeVtu(dir + "/c.vtu", m);
+  struct Stored {
+    FileBytes bytes;
+    VtuDocument doc;
+    VtuPiece piece;
+    explicit Stored(const std::string& f)
+        : bytes(FileBytes::openLazily(f)),
+          doc(bytes, f, "UnstructuredGrid"),
+          piece(vtuPieces(doc).at(0)) {}
+    uint64_t points() const {
+      return doc.encodedDigest(piece.node.child("Points").child("DataArray"));
+    }
+    uint64_t cells(const char* name) const {
+      return doc.encodedDigest(findDataArray(piece.node.child("Cells"), name));
+    }
+  };
+  const Stored a(dir + "/a.vtu"), b(dir + "/b.vtu"), c(dir + "/c.vtu");
+  ASSERT_NE(a.points(), 0u);
+  EXPECT_NE(
+      findDataArray(a.piece.node.child("Cells"), "connectivity").attribute("offset").as_ullong(),
+      findDataArray(b.piece.node.child("Cells"), "connectivity").attribute("offset").as_ullong())
+      << "the arrays should sit elsewhere in b";
+  EXPECT_EQ(a.points(), b.points());
+  for (const char* name : {"connectivity", "offsets", "types"})
+    EXPECT_EQ(a.cells(name), b.cells(name)) << name;
+  EXPECT_NE(a.cells("connectivity"), a.cells("offsets"));
+  EXPECT_NE(b.points(), c.points());
+  EXPECT_EQ(b.cells("connectivity"), c.cells("connectivity"));
+  // A series of the three: a and b are one mesh (read on), c's moved point is found.
+  writeText(dir + "/s.pvd",
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" "
+            "file=\"a.vtu\"/><DataSet timestep=\"1\" file=\"b.vtu\"/><DataSet "
+            "timestep=\"2\" file=\"c.vtu\"/></Collection></VTKFile>");
+  const std::string field = m.fields.front().name;
+  EXPECT_NO_THROW(readFieldStep(dir + "/s.pvd", field, 1));
+  EXPECT_NE(
+      fileErrorOf([&] { readFieldStep(dir + "/s.pvd", field, 2); }).find("/c.vtu') has point "),
+      std::string::npos);
 }
 
 TEST(Series, BadIndexesAndStepsAreNamed) {
