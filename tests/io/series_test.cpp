@@ -200,6 +200,15 @@ TEST(Series, LongHeadersAreSizedWhole) {
 }
 
 // Two tetrahedra with point field f as a legacy ascii .vtk: a format read whole for every step.
+// DIR/NAME, a .pvd of two steps: FIRST at time 0, SECOND at time 1.
+std::string twoStepSeries(const std::string& dir, const std::string& name, const std::string& first,
+                          const std::string& second) {
+  writeText(dir + "/" + name,
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"" + first +
+                "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/></Collection></VTKFile>");
+  return dir + "/" + name;
+}
+
 std::string legacyTwoTets(float scale) {
   std::string f;
   for (int i = 0; i < 5; ++i) f += std::to_string(scale * float(i)) + " ";
@@ -349,12 +358,8 @@ TEST(Series, AStepWithAnotherNumberOfComponentsIsRefused) {
 // whether the series is read whole or a step at a time, in every format.
 TEST(Series, AStepWhosePointsMovedIsRefused) {
   const std::string dir = sm::test::outputDir("Series.Moved");
-  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
   auto series = [&](const std::string& name, const std::string& first, const std::string& second) {
-    writeText(dir + "/" + name, head + "<DataSet timestep=\"0\" file=\"" + first +
-                                    "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/>" +
-                                    "</Collection></VTKFile>");
-    return dir + "/" + name;
+    return twoStepSeries(dir, name, first, second);
   };
   ReadOptions p;
   p.fields = {"p"};
@@ -414,12 +419,8 @@ TEST(Series, AStepWhosePointsMovedIsRefused) {
 
 TEST(Series, AStepWhoseCellsChangedIsRefused) {
   const std::string dir = sm::test::outputDir("Series.Remeshed");
-  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
   auto series = [&](const std::string& name, const std::string& first, const std::string& second) {
-    writeText(dir + "/" + name, head + "<DataSet timestep=\"0\" file=\"" + first +
-                                    "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/>" +
-                                    "</Collection></VTKFile>");
-    return dir + "/" + name;
+    return twoStepSeries(dir, name, first, second);
   };
   auto edited = [](std::string text, const std::string& from, const std::string& to) {
     const size_t at = text.find(from);
