@@ -182,20 +182,6 @@ std::vector<float> pvtuFieldStep(const std::string& path, const std::string& fie
 }
 
 // Formats without random access to one array: the whole file, keeping one field.
-std::vector<float> wholeReadFieldStep(const std::string& path, const std::string& field,
-                                      uint64_t step, const ReadOptions& options) {
-  ReadOptions o = options;
-  o.fields = {field};
-  o.loadFields = true;
-  o.step.reset();
-  mesh::UnstructuredMesh m = readMesh(path, o);
-  mesh::Field* f = m.fields.empty() ? nullptr : &m.fields[0];
-  if (!f || step >= f->numSteps())
-    throw FileError(path, "point field '", field, "' has ", f ? f->numSteps() : 0,
-                    " time steps, not step ", step);
-  return std::move(f->steps[step]);
-}
-
 std::vector<float> mapValues(const std::string& path, std::vector<float> values,
                              std::span<const uint32_t> map, Data data) {
   if (map.empty()) return values;
@@ -210,6 +196,23 @@ std::vector<float> mapValues(const std::string& path, std::vector<float> values,
 }
 
 }  // namespace
+
+std::vector<float> wholeReadFieldStep(
+    const std::string& path, const std::string& field, uint64_t step, const ReadOptions& options,
+    std::span<const uint32_t> pointMap,
+    const std::function<void(const mesh::UnstructuredMesh&)>& check) {
+  ReadOptions o = options;
+  o.fields = {field};
+  o.loadFields = true;
+  o.step.reset();
+  mesh::UnstructuredMesh m = readMesh(path, o);
+  if (check) check(m);
+  mesh::Field* f = m.fields.empty() ? nullptr : &m.fields[0];
+  if (!f || step >= f->numSteps())
+    throw FileError(path, "point field '", field, "' has ", f ? f->numSteps() : 0,
+                    " time steps, not step ", step);
+  return mapValues(path, std::move(f->steps[step]), pointMap, Data::Points);
+}
 
 std::vector<FieldStepCount> listFieldSteps(const std::string& path, const ReadOptions& options) {
   const std::string ext = fileExtension(path);
@@ -233,7 +236,7 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
   else if (isSeries(path))
     return seriesFieldStep(path, field, step, options, pointMap);
   else
-    values = wholeReadFieldStep(path, field, step, options);
+    return wholeReadFieldStep(path, field, step, options, pointMap);
   return mapValues(path, std::move(values), pointMap, Data::Points);
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,5 +48,13 @@ mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,
 // sideFiles: look for per-vertex field files beside `source` (docs/FORMATS.md); off for memory.
 mesh::UnstructuredMesh readUgrid(FileBytes bytes, const std::string& source,
                                  const ReadOptions& options, bool sideFiles);
+
+// Step `step` of point field `field` of a file read whole (.vtk, .ugrid), mapped by `pointMap`
+// as readFieldStep maps it. `check`, when given, sees the mesh first: a series compares it with
+// step 0's, so that a streamed step is parsed once for both.
+std::vector<float> wholeReadFieldStep(
+    const std::string& path, const std::string& field, uint64_t step, const ReadOptions& options,
+    std::span<const uint32_t> pointMap,
+    const std::function<void(const mesh::UnstructuredMesh&)>& check = {});
 
 }  // namespace sm::io

@@ -346,6 +346,13 @@ const SeriesStep& checkedStepFile(const std::string& path, const std::string& fi
 std::vector<float> seriesFieldStep(const std::string& path, const std::string& field, uint64_t step,
                                    const ReadOptions& options, std::span<const uint32_t> pointMap) {
   const std::vector<SeriesStep> steps = readSeriesIndex(path);
+  if (step < steps.size() && !readsStepsAlone(steps[step].file)) {
+    // A file read whole gives its mesh with its field: checked from the same parse.
+    auto check = [&](const mesh::UnstructuredMesh& m) {
+      checkSameMesh(path, steps, step, options, stepMeshOf(m));
+    };
+    return wholeReadFieldStep(steps[step].file, field, 0, options, pointMap, check);
+  }
   return readFieldStep(checkedStepFile(path, field, step, options, steps).file, field, 0, options,
                        pointMap);
 }

@@ -283,8 +283,12 @@ void checkSameMesh(const std::string& path, const std::vector<SeriesStep>& steps
   if (k == 0) return;
   const FirstStepDigests first = firstStepDigests(steps[0].file, options);
   if (first.encoded != 0 && encodedDigestOf(steps[k].file, options) == first.encoded) return;
-  const StepMesh later = readStepMesh(steps[k].file, options);
-  if (digestOf(later) == first.values) return;
+  checkSameMesh(path, steps, k, options, readStepMesh(steps[k].file, options));
+}
+
+void checkSameMesh(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+                   const ReadOptions& options, const StepMesh& later) {
+  if (k == 0 || digestOf(later) == firstStepDigests(steps[0].file, options).values) return;
   // Step 0's files may have been replaced after its digest was taken: then this finds no change.
   checkSameMesh(path, k, steps[k], readStepMesh(steps[0].file, options), later);
 }

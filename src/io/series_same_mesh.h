@@ -57,6 +57,10 @@ std::optional<uint64_t> firstChangedCell(const StepCells& first, const StepCells
 void checkSameMesh(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
                    const ReadOptions& options);
 
+// The same with step k's mesh already read (a file read whole, with its field).
+void checkSameMesh(const std::string& path, const std::vector<SeriesStep>& steps, uint64_t k,
+                   const ReadOptions& options, const StepMesh& later);
+
 // The same for two meshes in memory (formats read whole): `first` is step 0's.
 void checkSameMesh(const std::string& path, uint64_t k, const SeriesStep& step,
                    const StepMesh& first, const StepMesh& later);
