@@ -2,6 +2,7 @@
 // headers), and one step of one field decoded on its own. A time series is streamed this way, one
 // step in memory at a time, instead of every step being loaded with the mesh.
 #include <algorithm>
+#include <map>
 
 #include "common/error.h"
 #include "common/file_util.h"
@@ -85,10 +86,12 @@ std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOpt
   return steps;
 }
 
-// The pieces read together are welded, which needs the same fields and steps in each.
+// The pieces read together are welded, which needs the same fields and steps in each; and a
+// field must be the same quantity in each (a vector's magnitude in one piece and a scalar in
+// another would join without a seam, a wrong image with no error).
 void checkSameSteps(const std::string& path, const std::string& piece,
                     const std::vector<FieldStepCount>& first,
-                    const std::vector<FieldStepCount>& other) {
+                    const std::vector<FieldStepCount>& other, const std::string& firstPiece) {
   for (const FieldStepCount& f : first) {
     auto it = std::find_if(other.begin(), other.end(),
                            [&](const FieldStepCount& o) { return o.name == f.name; });
@@ -101,21 +104,53 @@ void checkSameSteps(const std::string& path, const std::string& piece,
     if (it->steps != f.steps)
       throw FileError(path, "piece '", piece, "' has ", it->steps, " time steps of field '", f.name,
                       "', the first piece ", f.steps);
+    if (it->components != f.components && it->components != 0 && f.components != 0)
+      throw FileError(path, "piece '", piece, "' has ", it->components, " components in field '",
+                      f.name, "', the first piece ('", firstPiece, "') ", f.components,
+                      ": every piece must hold a field alike");
   }
   if (other.size() != first.size())
     throw FileError(path, "piece '", piece, "' has ", other.size(),
                     " point fields, the first piece ", first.size());
 }
 
+// The components a .pvtu declares for each field of its point or cell data (<PPointData>,
+// <PCellData>; the steps "NAME@tK" of one field under NAME), where it declares them. Every rank
+// reads the index, so pieces checked against it agree across ranks without talking.
+std::map<std::string, uint32_t> declaredComponents(const std::string& path, bool cells) {
+  std::map<std::string, uint32_t> out;
+  if (fileExtension(path) != ".pvtu") return out;
+  FileBytes bytes = FileBytes::openLazily(path);
+  VtuDocument doc(bytes, path, "PUnstructuredGrid");
+  const pugi::xml_node data =
+      doc.root().child("PUnstructuredGrid").child(cells ? "PCellData" : "PPointData");
+  for (pugi::xml_node a : data.children("PDataArray"))
+    out.emplace(splitStepName(a.attribute("Name").value()).base,
+                doc.components(a, concat("array '", a.attribute("Name").value(), "'")));
+  return out;
+}
+
 std::vector<FieldStepCount> pvtuFieldSteps(const std::string& path, const ReadOptions& options) {
   const std::vector<std::string> files = pvtuPieceFiles(path);
+  const std::map<std::string, uint32_t> declared[2] = {declaredComponents(path, false),
+                                                       declaredComponents(path, true)};
   std::vector<FieldStepCount> first;
-  bool any = false;
+  std::string firstFile;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
     std::vector<FieldStepCount> steps = vtuFieldSteps(files[i], options);
-    if (any) checkSameSteps(path, files[i], first, steps);
-    if (!any) first = std::move(steps);
-    any = true;
+    for (const FieldStepCount& f : steps) {
+      auto d = declared[f.cellData].find(f.name);
+      if (f.components != 0 && d != declared[f.cellData].end() && d->second != f.components)
+        throw FileError(path, "piece '", files[i], "' has ", f.components, " components in field '",
+                        f.name, "', the index declares ", d->second,
+                        ": every piece must hold a field alike");
+    }
+    if (firstFile.empty()) {
+      first = std::move(steps);
+      firstFile = files[i];
+    } else {
+      checkSameSteps(path, files[i], first, steps, firstFile);
+    }
   }
   return first;
 }

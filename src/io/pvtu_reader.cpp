@@ -179,8 +179,13 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
   std::vector<mesh::UnstructuredMesh> pieces;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
     pieces.push_back(readVtu(open(files[i]), files[i], options, i));
-  // Pieces loaded with one step each cannot show the weld that their step counts differ.
-  if (options.step && options.loadFields && pieces.size() > 1) listFieldSteps(path, options);
+  // From the pieces' headers: their fields' step counts (pieces loaded with one step each cannot
+  // show the weld that they differ) and components (a magnitude welds to a scalar without a
+  // seam), each piece against the file's first, so that ranks reading other pieces agree.
+  // (Headers are read from files: an in-memory bundle, a fuzzer's, is checked by the weld only.)
+  const bool fromFiles = open.target<FileBytes (*)(const std::string&)>() != nullptr;
+  if (options.loadFields && files.size() > 1 && (options.step || fromFiles))
+    listFieldSteps(path, options);
   return weldPieces(path, std::move(pieces));
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/mesh_io.h"
 #include "io/weld.h"
@@ -121,6 +122,77 @@ TEST(PvtuReader, APieceThatIsItselfAPvtuIsNamed) {
   // Read on its own, the same file gets the advice.
   msg = fileErrorOf([&] { readMesh(dir + "/inner.vtu"); });
   EXPECT_NE(msg.find("give it the .pvtu extension"), std::string::npos) << msg;
+}
+
+// One tetrahedron shifted by `dx`, with point arrays `arrays` ("NAME:COMPONENTS" each), ascii.
+std::string asciiTet(double dx, std::initializer_list<std::string> arrays) {
+  std::string data;
+  for (const std::string& a : arrays) {
+    const std::string name = a.substr(0, a.find(':'));
+    const int comps = std::stoi(a.substr(a.find(':') + 1));
+    data += "<DataArray type=\"Float32\" Name=\"" + name + "\" NumberOfComponents=\"" +
+            std::to_string(comps) + "\" format=\"ascii\">";
+    for (int i = 0; i < 4 * comps; ++i) data += std::to_string(1 + i / comps) + " ";
+    data += "</DataArray>";
+  }
+  const std::string x = std::to_string(dx), x1 = std::to_string(dx + 1);
+  return "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"><UnstructuredGrid>"
+         "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points><DataArray type=\"Float64\" "
+         "NumberOfComponents=\"3\" format=\"ascii\">" +
+         x + " 0 0 " + x1 + " 0 0 " + x + " 1 0 " + x +
+         " 0 1</DataArray></Points><Cells>"
+         "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3</DataArray>"
+         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">4</DataArray>"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray></Cells>"
+         "<PointData>" +
+         data + "</PointData></Piece></UnstructuredGrid></VTKFile>";
+}
+
+// A field that is a scalar in one piece and a vector (read as its magnitude) in another would weld
+// without a seam into one wrong field: refused, naming the piece, against the index's declaration
+// (which every rank reads, so ranks reading other pieces refuse alike) or, where the index declares
+// nothing, against the first piece read. (Steps of one file that differ are refused by name.)
+TEST(PvtuReader, AFieldWithOtherComponentsInOnePieceIsRefused) {
+  const std::string dir = sm::test::outputDir("PvtuReader.Components");
+  test::writeText(dir + "/p0.vtu", asciiTet(0, {"f:1"}));
+  test::writeText(dir + "/p1.vtu", asciiTet(2, {"f:3"}));
+  const std::string pieces = "<Piece Source=\"p0.vtu\"/><Piece Source=\"p1.vtu\"/>";
+  test::writeText(dir + "/declared.pvtu",
+                  "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\"><PUnstructuredGrid>"
+                  "<PPointData><PDataArray type=\"Float32\" Name=\"f\" NumberOfComponents=\"1\"/>"
+                  "</PPointData><PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>"
+                  "</PPoints>" +
+                      pieces + "</PUnstructuredGrid></VTKFile>");
+  test::writeText(dir + "/bare.pvtu",
+                  "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\"><PUnstructuredGrid>" +
+                      pieces + "</PUnstructuredGrid></VTKFile>");
+  const std::string piece1 = "piece '" + dir + "/p1.vtu' has 3 components in field 'f'";
+  ReadOptions second;
+  second.pieces = {1};
+  for (const ReadOptions& o : {ReadOptions{}, second}) {
+    const std::string msg = fileErrorOf([&] { readMesh(dir + "/declared.pvtu", o); });
+    EXPECT_NE(msg.find(piece1 + ", the index declares 1: every piece must hold a field alike"),
+              std::string::npos)
+        << msg;
+  }
+  const std::string bare = fileErrorOf([&] { readMesh(dir + "/bare.pvtu"); });
+  EXPECT_NE(bare.find(piece1 + ", the first piece ('" + dir + "/p0.vtu') 1"), std::string::npos)
+      << bare;
+  // One component asked for reads alike from both; a piece read alone with nothing declared to
+  // compare it with reads as what it is.
+  ReadOptions component;
+  component.fields = {"f[0]"};
+  EXPECT_EQ(readMesh(dir + "/declared.pvtu", component).fields.at(0).steps.at(0).size(), 8u);
+  EXPECT_EQ(readMesh(dir + "/bare.pvtu", second).fields.at(0).steps.at(0).at(0),
+            float(std::sqrt(3.0)));
+  ReadOptions first;
+  first.pieces = {0};
+  EXPECT_NO_THROW(readMesh(dir + "/declared.pvtu", first));
+
+  test::writeText(dir + "/steps.vtu", asciiTet(0, {"g@t0:1", "g@t1:3"}));
+  const std::string steps = fileErrorOf([&] { readMesh(dir + "/steps.vtu"); });
+  EXPECT_NE(steps.find("time steps of point array 'g' have 1 and 3 components"), std::string::npos)
+      << steps;
 }
 
 // A multiblock file (.vtm, as VTK's vtkXMLMultiBlockDataWriter and solvers write one) whose
