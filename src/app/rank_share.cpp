@@ -52,20 +52,40 @@ std::string pieceNames(const std::string& path, const RankShare& s) {
   return names;
 }
 
-// What a rank's pieces hold as fields, in words, by name (cell data said so): the same on every
-// rank for pieces that agree, whatever the order the pieces list them in.
-std::string describeFields(const RankShare& s) {
-  std::vector<std::tuple<std::string, uint64_t, bool>> fields;
+// The fields a rank's pieces hold, from their headers: a stream's listing, or the listing of a
+// rank that loaded every step (empty for a rank without pieces).
+std::vector<io::FieldStepCount> listedFields(const std::string& path, const io::ReadOptions& read,
+                                             const RankShare& s) {
+  if (s.stream) return s.stream->fieldSteps;
+  if (s.clusters.empty()) return {};
+  io::ReadOptions mine = read;
+  mine.pieces = s.clusters;
+  return io::listFieldSteps(path, mine);
+}
+
+// What a rank's pieces hold as fields, in words, by name (cell data said so, and a vector read as
+// its magnitude): the same on every rank for pieces that agree, whatever the order the pieces
+// list them in. Components count because a scalar in one rank's pieces and a vector's magnitude in
+// another's render as one field with no error, when the index declares neither.
+std::string describeFields(const RankShare& s, const std::vector<io::FieldStepCount>& listed) {
+  auto componentsOf = [&](const std::string& name) {
+    for (const io::FieldStepCount& f : listed)
+      if (f.name == name) return f.components;
+    return 0u;
+  };
+  std::vector<std::tuple<std::string, uint64_t, bool, uint32_t>> fields;
   if (s.stream)
-    for (const io::FieldStepCount& f : s.stream->fieldSteps)
-      fields.emplace_back(f.name, f.steps, f.cellData);
+    for (const io::FieldStepCount& f : listed)
+      fields.emplace_back(f.name, f.steps, f.cellData, f.components);
   else
-    for (const mesh::Field& f : s.mesh.fields) fields.emplace_back(f.name, f.numSteps(), false);
+    for (const mesh::Field& f : s.mesh.fields)
+      fields.emplace_back(f.name, f.numSteps(), false, componentsOf(f.name));
   std::sort(fields.begin(), fields.end());
   std::string text;
-  for (const auto& [name, steps, cells] : fields)
-    text += concat(text.empty() ? "" : ", ", "'", name, "'", cells ? " (cell data)" : "", " with ",
-                   steps, steps == 1 ? " step" : " steps");
+  for (const auto& [name, steps, cells, components] : fields)
+    text += concat(text.empty() ? "" : ", ", "'", name, "'", cells ? " (cell data)" : "",
+                   components > 1 ? concat(" (the magnitude of ", components, " components)") : "",
+                   " with ", steps, steps == 1 ? " step" : " steps");
   return text.empty() ? "no fields" : text;
 }
 
@@ -134,8 +154,9 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
   // ranks reading some each must come to the same answer. (A stream of cell data lists the one
   // cell field asked for.)
   if (coll.size() > 1)
-    checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields", describeFields(s),
-                     !s.clusters.empty(), pieceNames(path, s), coll);
+    checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields",
+                     describeFields(s, listedFields(path, o.read, s)), !s.clusters.empty(),
+                     pieceNames(path, s), coll);
   if (cellData && s.stream)
     averageFirstCellStep(s, o.read.fields.at(0), coll);
   else if (cellData)

@@ -188,4 +188,43 @@ for n in 1 2; do
   grep -q "lacks.pvtu: .*shock\|lacks.pvtu: .*other" lacks$n.log || { cat lacks$n.log; fail "no message naming the fields ($n rank(s))"; }
   if ls lacks$n.png >/dev/null 2>&1; then fail "an image was written ($n rank(s))"; fi
 done
+# A field that is a scalar in one piece and a vector in the other, in a .pvtu that declares
+# neither (no <PPointData>): one rank reading both refuses it against the first piece; two ranks,
+# each reading one, would each read its own piece alike and render a scalar beside a vector's
+# magnitude with no seam, so they compare what they read and refuse it naming both. The same for
+# `view` (every step in memory, not streamed).
+mkdir -p bare
+python3 - <<'PY'
+def tet(dx, comps):
+    values = ' '.join(str(1 + i // comps) for i in range(4 * comps))
+    return ('<VTKFile type="UnstructuredGrid" version="1.0"><UnstructuredGrid>'
+            '<Piece NumberOfPoints="4" NumberOfCells="1"><Points><DataArray type="Float64" '
+            'NumberOfComponents="3" format="ascii">%g 0 0 %g 0 0 %g 1 0 %g 0 1</DataArray></Points>'
+            '<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>'
+            '<DataArray type="Int32" Name="offsets" format="ascii">4</DataArray>'
+            '<DataArray type="UInt8" Name="types" format="ascii">10</DataArray></Cells>'
+            '<PointData><DataArray type="Float32" Name="f" NumberOfComponents="%d" format="ascii">'
+            '%s</DataArray></PointData></Piece></UnstructuredGrid></VTKFile>'
+            % (dx, dx + 1, dx, dx, comps, values))
+open('bare/p0.vtu', 'w').write(tet(0, 1))
+open('bare/p1.vtu', 'w').write(tet(2, 3))
+open('bare.pvtu', 'w').write('<VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid>'
+                             '<Piece Source="bare/p0.vtu"/><Piece Source="bare/p1.vtu"/>'
+                             '</PUnstructuredGrid></VTKFile>')
+PY
+if "$sm" render bare.pvtu --field f --size 16x16 --out bare1.png >bare1.log 2>&1; then
+  fail "a scalar and a vector in two pieces rendered on 1 rank"
+fi
+grep -q "bare.pvtu: piece 'bare/p1.vtu' has 3 components in field 'f', the first piece" bare1.log ||
+  { cat bare1.log; fail "no message naming the piece and the components (1 rank)"; }
+if mpi 2 "$sm" render bare.pvtu --field f --size 16x16 --out bare2.png >bare2.log 2>&1; then
+  fail "a scalar and a vector in two pieces rendered on 2 ranks"
+fi
+want="bare.pvtu: the pieces do not hold the same point fields: rank 0 (bare/p0.vtu) has 'f' with 1 step; rank 1 (bare/p1.vtu) has 'f' (the magnitude of 3 components) with 1 step"
+grep -qF "$want" bare2.log || { cat bare2.log; fail "no message naming both ranks' fields (render)"; }
+if mpi 2 "$sm" view bare.pvtu --field f --size 16x16 --headless --frames 1 >bare2v.log 2>&1; then
+  fail "a scalar and a vector in two pieces were shown on 2 ranks"
+fi
+grep -qF "$want" bare2v.log || { cat bare2v.log; fail "no message naming both ranks' fields (view)"; }
+if ls bare[12].png >/dev/null 2>&1; then fail "an image was written"; fi
 echo "time steps: all checks passed"
