@@ -29,16 +29,6 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, 
   return broadcastString(coll, std::move(name));
 }
 
-std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
-                                      const std::vector<uint64_t>& steps, Collectives& coll) {
-  mesh::Range r;
-  if (const mesh::Field* f = m.findField(field))
-    for (uint64_t s : steps) r.extend(mesh::fieldRange(*f, s));
-  double lo = coll.min(r.empty ? INFINITY : r.lo), hi = coll.max(r.empty ? -INFINITY : r.hi);
-  if (!(lo <= hi)) return {0.0, 1.0};
-  return {lo, hi};
-}
-
 uint64_t agreedStepCount(const std::string& path, const std::string& field, uint64_t mine,
                          bool hasPoints, Collectives& coll) {
   const double lo = coll.min(hasPoints ? double(mine) : INFINITY);

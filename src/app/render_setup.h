@@ -22,10 +22,6 @@ void checkImageSize(const RenderJob& job);
 // The job's field, or rank 0's first point field when none was asked for (collective).
 std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, Collectives& coll);
 
-// Range of `field` over `steps`, over all ranks; [0, 1] when no rank has a finite value.
-std::pair<double, double> globalRange(const mesh::UnstructuredMesh& m, const std::string& field,
-                                      const std::vector<uint64_t>& steps, Collectives& coll);
-
 // The number of time steps of `field` that every rank with points has (collective); 0 when none
 // has points. Ranks whose pieces disagree are refused, naming `path`, a rank of each count and the
 // counts, as one rank reading the same pieces refuses them (io::listFieldSteps): otherwise the

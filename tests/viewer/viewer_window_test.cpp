@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "common/file_util.h"
 #include "support/test_support.h"
 #include "viewer_runner.h"
 
@@ -143,6 +144,54 @@ TEST(ViewerHeadless, FinerStepStopsAtAHundredthOfTheStart) {
   const double start = run(" --frames 1", "start");
   const double finest = run(" --script " + quote(script), "finer");
   EXPECT_NEAR(finest, start / 100, 1e-9 * start);
+}
+
+// Breaks the zlib stream of point array `array` in a .vtu written by `shellmarch generate`
+// (appended raw data, one block, UInt64 block header): its header stays readable, its values
+// do not.
+void corruptArray(const std::string& vtu, const std::string& array) {
+  std::vector<uint8_t> bytes = readFile(vtu);
+  const std::string text(bytes.begin(), bytes.end());
+  const size_t name = text.find("Name=\"" + array + "\"");
+  ASSERT_NE(name, std::string::npos);
+  const size_t offset = std::stoull(text.substr(text.find("offset=\"", name) + 8));
+  const size_t data = text.find('_', text.find("<AppendedData")) + 1;
+  const size_t stream = data + offset + 4 * 8;  // past the block count, sizes and one block size
+  ASSERT_EQ(bytes.at(stream), 0x78);            // zlib's header
+  bytes[stream] = bytes[stream + 1] = 0;
+  writeBytesAtomically(vtu, bytes);
+}
+
+// A time series holds one step per field in memory, as `render --time all` does: a step is read
+// from the file when it is shown (and once each for the range over all steps, unless --range
+// gives it). A step whose data is corrupt therefore stops the viewer only when it is read: with
+// --range, when it is shown; without, when the range is taken, before the first frame. (Read
+// whole at load, as before, it stopped every session of the file.)
+TEST(ViewerHeadless, StepsAreReadFromTheFileWhenShown) {
+  const std::string dir = outputDir("ViewerHeadless.StepsWhenShown");
+  const std::string mesh = generateTestMesh(dir), script = dir + "/steps.txt";
+  corruptArray(dir + "/cube/cube_0.vtu", "vortex@t2");
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    std::fputs("frame\nkey right\nframe\nkey right\nframe\nquit\n", f);
+    std::fclose(f);
+  }
+  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
+                           quote(mesh) + " --field vortex --size 32x24 --headless ";
+  CommandResult first = runCommand(view + "--range 0,1 --frames 1 --print-camera", dir, "first");
+  expectCleanRun(first);
+  EXPECT_EQ(lastJson(first.out)["time"], 0);
+  const std::string want =
+      "shellmarch: error: " + dir +
+      "/cube/cube_0.vtu: point array 'vortex@t2': compressed block 0 is corrupt (zlib: data "
+      "error)\n";
+  CommandResult stepped =
+      runCommand(view + "--range 0,1 --script " + quote(script) + " --print-camera", dir, "step");
+  EXPECT_EQ(stepped.status, 1);
+  EXPECT_EQ(stepped.err, want);
+  CommandResult ranged = runCommand(view + "--frames 1", dir, "range");
+  EXPECT_EQ(ranged.status, 1);
+  EXPECT_EQ(ranged.err, want);
 }
 
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {

@@ -1,6 +1,7 @@
 #include "app/view/view_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <utility>
 
@@ -62,6 +63,9 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   // The viewer cycles through every point field as a file holds it (vectors as magnitudes). A
   // component ("v[1]") or cell data is a field only when named: then it is the one field shown.
   app::ShareOptions share = job.share;
+  // Steps are read from the file when shown (as `render --time all` reads them), so that a long
+  // series holds one step per field in memory, not every step of every field.
+  share.streamSteps = true;
   io::ReadOptions named = share.read;
   named.fields = {job.field};
   if (!job.field.empty()) {
@@ -69,9 +73,11 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
     if (job.field.back() == ']' || *share.cellData) share.read = named;
   }
   share_ = app::loadRankShare(job.mesh, share, coll);
+  source_ = std::make_unique<app::StepSource>(job.mesh, share_, coll);  // before preparation
   loadSeconds_ = load.seconds();
   choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
   choices_.colormaps = colormapChoices(job.colormap);
+  fields_.resize(choices_.fields.size());
   selectField(0);
   settings_ = app::makeSettings(job, share_, field_.range);
   colormap_ = 0;
@@ -103,31 +109,44 @@ ViewState ViewScene::initialState(int width, int height) const {
 
 void ViewScene::selectField(int index) {
   fieldIndex_ = index;
-  field_.name = choices_.fields[size_t(index)];
-  const mesh::Field* f = share_.mesh.findField(field_.name);
-  field_.steps =
-      std::max<uint64_t>(app::agreedStepCount(job_.mesh, field_.name, f ? f->numSteps() : 0,
-                                              share_.mesh.numPoints() > 0, coll_),
-                         1);
-  if (index == 0 && job_.range) {
-    field_.range = *job_.range;
-  } else {
-    // Over every step, so that colours mean the same while stepping through time.
-    std::vector<uint64_t> all(field_.steps);
-    for (uint64_t i = 0; i < all.size(); ++i) all[i] = i;
-    field_.range = app::globalRange(share_.mesh, field_.name, all, coll_);
-  }
+  std::optional<FieldInfo>& known = fields_.at(size_t(index));
+  if (!known)
+    known = describeField(choices_.fields[size_t(index)], index == 0 ? job_.range : std::nullopt);
+  field_ = *known;
   settings_.transferFunction.lo = field_.range.first;
   settings_.transferFunction.hi = field_.range.second;
   step_ = -1;  // scalars of the new field are uploaded by applyState
+}
+
+// Collective, as every rank selects the same fields in the same order; kept per field, so that
+// coming back to one does not read its steps again.
+FieldInfo ViewScene::describeField(const std::string& name,
+                                   std::optional<std::pair<double, double>> range) {
+  FieldInfo f;
+  f.name = name;
+  f.steps = std::max<uint64_t>(app::agreedStepCount(job_.mesh, name, source_->numSteps(name),
+                                                    share_.mesh.numPoints() > 0, coll_),
+                               1);
+  if (range) {
+    f.range = *range;
+    return f;
+  }
+  // Over every step, so that colours mean the same while stepping through time: each step is
+  // read once, one at a time. A field with no finite value shows as empty, not as an error, so
+  // that cycling through fields goes on.
+  mesh::Range r;
+  for (uint64_t step = 0; step < f.steps; ++step) r.extend(source_->range(name, step));
+  const double lo = coll_.min(r.empty ? INFINITY : r.lo),
+               hi = coll_.max(r.empty ? -INFINITY : r.hi);
+  if (lo <= hi) f.range = {lo, hi};
+  return f;
 }
 
 void ViewScene::applyState(ViewState& state) {
   if (state.field != fieldIndex_) selectField(state.field);
   state.step = wrap(state.step, field_.steps);
   if (state.step != step_) {
-    gpu_->setScalars(
-        app::fieldStep(share_.mesh, prepared_.rank, field_.name, uint64_t(state.step)));
+    gpu_->setScalars(source_->scalars(prepared_.rank, field_.name, uint64_t(state.step)));
     step_ = state.step;
   }
   if (state.colormap != colormap_) {

@@ -8,13 +8,16 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "app/collectives.h"
 #include "app/rank_pipeline.h"
 #include "app/rank_share.h"
 #include "app/render_job.h"
+#include "app/step_source.h"
 #include "app/view/view_state.h"
 #include "render/renderer.h"
 
@@ -52,11 +55,13 @@ class ViewScene {
 
  private:
   void selectField(int index);
+  FieldInfo describeField(const std::string& name, std::optional<std::pair<double, double>> range);
   void applyState(ViewState& state);
 
   const app::RenderJob& job_;
   app::Collectives& coll_;
   app::RankShare share_;
+  std::unique_ptr<app::StepSource> source_;  // the shown step of a field, from share_ or its file
   app::PreparedShare prepared_;
   ViewChoices choices_;
   scene::Camera home_;
@@ -69,6 +74,7 @@ class ViewScene {
   std::unique_ptr<render::Renderer> renderer_;
   render::RenderSettings settings_;
   FieldInfo field_;
+  std::vector<std::optional<FieldInfo>> fields_;  // choices_.fields', once selected
   int fieldIndex_ = -1, step_ = -1, colormap_ = -1;
 };
 
