@@ -7,43 +7,27 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "gen/generate.h"
+#include "gen/volume_assembly.h"
 #include "mesh/element_geometry.h"
-#include "mesh/mesh_builder.h"
 
 namespace sm::gen {
 namespace {
 
 using mesh::CellType;
 
-struct CellList {
-  std::vector<glm::dvec3> points;
-  std::array<std::vector<uint32_t>, mesh::kNumCellTypes> cells;
-
+// A VolumeAssembly whose cells are mirrored into positive orientation as they are added.
+struct CellList : VolumeAssembly {
   void add(CellType type, std::initializer_list<uint32_t> ids) {
     SM_CHECK_EQ(ids.size(), mesh::numVerts(type));
     std::array<uint32_t, 8> v{};
     std::copy(ids.begin(), ids.end(), v.begin());
     std::span<uint32_t> span(v.data(), ids.size());
     if (mesh::signedVolume(type, span, points) < 0.0) mesh::mirrorElement(type, span);
-    auto& out = cells[mesh::typeIndex(type)];
-    out.insert(out.end(), span.begin(), span.end());
+    addCell(type, span);
   }
 
-  mesh::UnstructuredMesh build(const std::string& name) {
-    mesh::MeshBuilder builder(name);
-    builder.setPoints(std::move(points));
-    uint64_t fileCell = 0;
-    for (CellType t : mesh::kAllCellTypes) {
-      const uint32_t nv = mesh::numVerts(t);
-      const auto& ids = cells[mesh::typeIndex(t)];
-      builder.reserveCells(t, ids.size() / nv);
-      std::array<int64_t, 8> wide{};
-      for (size_t e = 0; e < ids.size(); e += nv) {
-        for (uint32_t k = 0; k < nv; ++k) wide[k] = ids[e + k];
-        builder.addCell(t, {wide.data(), nv}, fileCell++);
-      }
-    }
-    mesh::UnstructuredMesh m = builder.finish();
+  mesh::UnstructuredMesh build(const std::string& name) const {
+    mesh::UnstructuredMesh m = VolumeAssembly::build(name);
     SM_CHECK_EQ(m.invertedFixed, 0u);
     return m;
   }
