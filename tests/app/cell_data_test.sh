@@ -246,6 +246,15 @@ mpiexec -n 3 --oversubscribe "$sm" render checker.pvtu --field c "${small[@]}" -
 env -u DISPLAY -u WAYLAND_DISPLAY mpiexec -n 3 --oversubscribe "$sm" view checker.pvtu --field c \
   "${small[@]}" --range 0.9,2.5 --headless --frames 1 --screenshot view3.png
 check "view of cell data on 3 ranks as render's image" render3.png view3.png
+# A later step of streamed cell data, read and averaged over the ranks when the viewer shows it.
+mpiexec -n 3 --oversubscribe "$sm" render checker.pvtu --field s --time 1 "${small[@]}" --range 1.8,5 \
+  --out render3s.png
+printf 'key right\nframe\nquit\n' > step1.txt
+env -u DISPLAY -u WAYLAND_DISPLAY mpiexec -n 3 --oversubscribe "$sm" view checker.pvtu --field s \
+  "${small[@]}" --range 1.8,5 --headless --script step1.txt --screenshot view3s.png
+check "view of step 1 of cell data on 3 ranks as render's image" render3s.png view3s.png
+"$sm" render checker.pvtu --field s --time 0 "${small[@]}" --range 1.8,5 --out render3s0.png
+if cmp -s render3s0.png view3s.png; then echo "FAIL: the viewer's step 1 is step 0"; fails=$((fails + 1)); fi
 # The image is not empty (a blank image would match the others too).
 python3 - <<'PY' || fails=$((fails + 1))
 import struct, sys
