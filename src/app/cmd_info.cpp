@@ -3,6 +3,7 @@
 // one JSON object on stdout. Reader warnings go to stderr, so --json output stays parseable.
 #include <algorithm>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,7 +43,30 @@ nlohmann::json rangeJson(const mesh::Range& r) {
   return r.empty ? nlohmann::json(nullptr) : nlohmann::json::array({r.lo, r.hi});
 }
 
-nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m) {
+// Components of the array each field is read from (by name): 1 for a scalar, N for a vector
+// shown as its magnitude, 0 for one component asked for ("v[1]"). Known from the XML headers as
+// readMesh planned its reads; not for legacy .vtk and .ugrid files, which would be parsed again.
+using Components = std::map<std::string, uint32_t>;
+
+Components componentsOf(const InfoOptions& o, const io::ReadOptions& read) {
+  Components out;
+  if (!io::readsStepsAlone(o.file)) return out;
+  for (const io::FieldStepCount& f : io::listFieldSteps(o.file, read)) out[f.name] = f.components;
+  return out;
+}
+
+nlohmann::json componentsJson(const Components& c, const std::string& name) {
+  auto it = c.find(name);
+  return it == c.end() ? nlohmann::json(nullptr) : nlohmann::json(it->second);
+}
+
+uint32_t vectorComponents(const Components& c, const std::string& name) {
+  auto it = c.find(name);
+  return it == c.end() || it->second < 2 ? 0u : it->second;
+}
+
+nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m,
+                        const Components& components) {
   nlohmann::json j;
   j["file"] = o.file;
   j["format"] = io::formatDescription(o.file);
@@ -72,12 +96,15 @@ nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m) {
   j["cellArrays"] = m.cellArrays;  // fields only when named (averaged onto the points)
   j["fields"] = nlohmann::json::array();
   for (const mesh::Field& f : m.fields)
-    j["fields"].push_back(
-        {{"name", f.name}, {"steps", f.numSteps()}, {"range", rangeJson(mesh::fieldRange(f))}});
+    j["fields"].push_back({{"name", f.name},
+                           {"steps", f.numSteps()},
+                           {"components", componentsJson(components, f.name)},
+                           {"range", rangeJson(mesh::fieldRange(f))}});
   return j;
 }
 
-void printText(std::ostream& out, const InfoOptions& o, const mesh::UnstructuredMesh& m) {
+void printText(std::ostream& out, const InfoOptions& o, const mesh::UnstructuredMesh& m,
+               const Components& components) {
   auto row = [&out](const char* label, const auto& value) {
     out << "  " << label << std::string(18 - std::string(label).size(), ' ') << value << "\n";
   };
@@ -114,7 +141,13 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
   for (const mesh::Field& f : m.fields) {
     const mesh::Range r = mesh::fieldRange(f);
     // Names come from the file: printed as one printable line each, as messages are.
-    out << "    " << printableLine(f.name) << ": " << f.numSteps()
+    const uint32_t n = vectorComponents(components, f.name);
+    // A vector renders as its magnitude: say so, with the names that render one component.
+    const std::string magnitude =
+        n ? concat("the magnitude of ", n, " components (", printableLine(f.name), "[0] .. ",
+                   printableLine(f.name), "[", n - 1, "] for one), ")
+          : std::string();
+    out << "    " << printableLine(f.name) << ": " << magnitude << f.numSteps()
         << (f.numSteps() == 1 ? " step" : " steps") << ", range "
         << (r.empty ? std::string("none (no finite values)") : concat("[", r.lo, ", ", r.hi, "]"))
         << "\n";
@@ -136,10 +169,11 @@ void runInfo(const InfoOptions& o) {
   read.clusterArray = o.clusterArray;
   read.pieces = o.pieces;
   const mesh::UnstructuredMesh m = io::readMesh(o.file, read);
+  const Components components = componentsOf(o, read);
   if (o.json)
-    std::cout << infoJson(o, m).dump(2) << std::endl;
+    std::cout << infoJson(o, m, components).dump(2) << std::endl;
   else
-    printText(std::cout, o, m);
+    printText(std::cout, o, m, components);
 }
 
 }  // namespace

@@ -55,6 +55,24 @@ TEST(InfoCommand, JsonDescribesTheFixtureMesh) {
   EXPECT_EQ(j["fields"][2]["steps"], 3);
   EXPECT_EQ(j["fields"][2]["range"], (std::vector<double>{0, 212}));
   EXPECT_EQ(j["fields"][0]["range"], (std::vector<double>{1, 7}));
+  // What each field is read from: a scalar, or a vector shown as its magnitude.
+  EXPECT_EQ(j["fields"][0]["components"], 1);
+  EXPECT_EQ(j["fields"][1]["name"], "velocity");
+  EXPECT_EQ(j["fields"][1]["components"], 3);
+}
+
+// The text says a vector renders as its magnitude, and how to render one component. Legacy files
+// are not parsed twice to learn it: their components are not known (null).
+TEST(InfoCommand, VectorsAreNamedAsMagnitudes) {
+  const std::string text = runInfo({io::test::fixturePath("mesh_appended_raw_zlib_h64.vtu")});
+  EXPECT_NE(text.find("    velocity: the magnitude of 3 components (velocity[0] .. velocity[2] for "
+                      "one), 1 step, range [0, 29.39"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("    pressure: 1 step, range [1, 7]"), std::string::npos) << text;
+  nlohmann::json legacy = nlohmann::json::parse(
+      runInfo({sm::test::sharedDataPath("notch_stress_fixed.vtk"), "--json"}));
+  EXPECT_TRUE(legacy["fields"][0]["components"].is_null());
 }
 
 TEST(InfoCommand, FieldAndClusterOptions) {
@@ -63,6 +81,7 @@ TEST(InfoCommand, FieldAndClusterOptions) {
       runInfo({"--json", "--field", "big[1]", "--field", "small", "--cluster-array", "part", f}));
   ASSERT_EQ(j["fields"].size(), 2u);
   EXPECT_EQ(j["fields"][0]["name"], "big[1]");
+  EXPECT_EQ(j["fields"][0]["components"], 0);  // one component of a vector
   EXPECT_EQ(j["fields"][0]["range"], (std::vector<double>{0, 12}));
   EXPECT_EQ(j["fields"][1]["range"], (std::vector<double>{-12, 0}));
   EXPECT_EQ(j["clusters"], 4);
