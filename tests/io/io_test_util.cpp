@@ -212,4 +212,34 @@ void writeText(const std::string& path, const std::string& text) {
   writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
 }
 
+std::string twoTets(float p0, float p1) {
+  return "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"><UnstructuredGrid>"
+         "<Piece NumberOfPoints=\"5\" NumberOfCells=\"2\"><Points>"
+         "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+         "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1</DataArray></Points><Cells>"
+         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2 3 1 2 3 4"
+         "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 8</DataArray>"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10 10</DataArray></Cells>"
+         "<CellData><DataArray type=\"Float32\" Name=\"p\" format=\"ascii\">" +
+         std::to_string(p0) + " " + std::to_string(p1) +
+         "</DataArray></CellData></Piece></UnstructuredGrid></VTKFile>";
+}
+
+std::string twoStepSeries(const std::string& dir, const std::string& name, const std::string& first,
+                          const std::string& second) {
+  writeText(dir + "/" + name,
+            "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"" + first +
+                "\"/><DataSet timestep=\"1\" file=\"" + second + "\"/></Collection></VTKFile>");
+  return dir + "/" + name;
+}
+
+std::string legacyTwoTets(float scale) {
+  std::string f;
+  for (int i = 0; i < 5; ++i) f += std::to_string(scale * float(i)) + " ";
+  return "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n"
+         "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 2 10\n4 0 1 2 3\n4 1 2 3 4\nCELL_TYPES 2\n10\n10\n"
+         "POINT_DATA 5\nSCALARS f float 1\nLOOKUP_TABLE default\n" +
+         f + "\n";
+}
+
 }  // namespace sm::io::test

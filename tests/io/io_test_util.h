@@ -44,6 +44,16 @@ std::vector<uint8_t> readBytes(const std::string& path);
 void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes);
 void writeText(const std::string& path, const std::string& text);
 
+// Small time-series inputs (series_test.cpp, series_checks_test.cpp).
+// Two tetrahedra sharing a face, cell array p = (p0, p1), as an ascii .vtu.
+std::string twoTets(float p0, float p1);
+// The same two tetrahedra with point field f = scale * (0, 1, 2, 3, 4) as a legacy ascii .vtk: a
+// format read whole for every step.
+std::string legacyTwoTets(float scale);
+// Writes DIR/NAME, a .pvd of two steps: FIRST at time 0, SECOND at time 1; returns its path.
+std::string twoStepSeries(const std::string& dir, const std::string& name, const std::string& first,
+                          const std::string& second);
+
 // The message of the sm::FileError that fn throws; fails the test if it throws nothing or
 // something else.
 template <class Fn>
