@@ -1,6 +1,6 @@
 // shellmarch view MESH [the data, camera and transfer-function options of render]
 //                      [--frames K] [--script FILE] [--screenshot FILE] [--print-camera]
-//                      [--headless]
+//                      [--headless] [--play] [--no-overlay]
 // An interactive window on rank 0 (GLFW, presented through a Vulkan swapchain); every rank renders
 // every frame. Controls: `shellmarch view --help-controls`; script format: `--help-script`.
 #include <cstdio>
@@ -44,6 +44,8 @@ void registerView(CLI::App& app) {
                 "No window: present to a headless surface (needs --frames or --script)");
   auto noOverlay = std::make_shared<bool>(false);
   cmd->add_flag("--no-overlay", *noOverlay, "Start with the overlay hidden (o toggles it)");
+  cmd->add_flag("--play", opts->play,
+                "Start playing the time steps, one a frame, the next read ahead (space pauses)");
   cmd->add_flag_callback(
       "--help-controls",
       [] {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <optional>
 
@@ -15,9 +14,9 @@
 #include "app/render_setup.h"
 #include "app/render_stats.h"
 #include "app/sequence_stats.h"
+#include "app/step_loads.h"
 #include "app/step_source.h"
 #include "app/time_selection.h"
-#include "common/check.h"
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/file_util.h"
@@ -25,7 +24,6 @@
 #include "common/timer.h"
 #include "io/mesh_io.h"
 #include "render/renderer.h"
-#include "render/scalar_prefetch.h"
 #include "scene/image.h"
 #include "vk/context.h"
 #include "vk/vk_error.h"
@@ -81,60 +79,6 @@ void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
   }
 }
 
-// Loads the scalars of frames' steps, now or ahead of the frame, through the prefetcher. A
-// collective source (streamed cell data) reads its next step's cells ahead on a thread of its own;
-// averaging them onto the points takes every rank, so it runs when the frame starts.
-class FrameLoads {
- public:
-  explicit FrameLoads(const Frames& f) : f_(f), prefetcher_(f.gpu) {}
-
-  // Before a frame of `step`, which a prefetch loaded, or which is loaded now.
-  render::ScalarSwitch loadFor(uint64_t step) {
-    if (prefetcher_.pending()) return prefetcher_.swap();
-    if (!cellsAhead_.valid()) return prefetcher_.loadNow(load(step, 0));
-    Timer wait;
-    CellsRead ahead = cellsAhead_.get();
-    const double waitMs = wait.ms();
-    render::ScalarSwitch s =
-        prefetcher_.loadNow([&] { return f_.source.scalarsFromCells(f_.rank, ahead.values); });
-    // The read ran during the frame before; the averaging, gather and upload did not.
-    s.waitMs += waitMs;
-    s.loadMs += ahead.ms;
-    s.prefetched = true;
-    return s;
-  }
-  // While a frame renders, the next one's step (one thread, leaving the cores to the frame).
-  void prefetch(uint64_t step) {
-    if (!f_.source.collective()) {
-      prefetcher_.prefetch(load(step, 1));
-      return;
-    }
-    SM_CHECK(!cellsAhead_.valid());  // one read ahead at a time, taken by the next frame
-    cellsAhead_ = std::async(std::launch::async, [&source = f_.source, &field = f_.field, step] {
-      Timer t;
-      CellsRead r{source.readCells(field, step, 1), 0.0};
-      r.ms = t.ms();
-      return r;
-    });
-  }
-
- private:
-  struct CellsRead {
-    std::vector<float> values;
-    double ms;
-  };
-
-  render::ScalarPrefetcher::Load load(uint64_t step, unsigned threads) const {
-    return [&source = f_.source, &rank = f_.rank, &field = f_.field, step, threads] {
-      return source.scalars(rank, field, step, threads);
-    };
-  }
-
-  const Frames& f_;
-  render::ScalarPrefetcher prefetcher_;
-  std::future<CellsRead> cellsAhead_;
-};
-
 // Renders the steps job.repeat times. Each frame's scalars were read and uploaded while the frame
 // before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
 // a frame whose step is the one shown already (one step rendered repeatedly) loads nothing.
@@ -142,12 +86,12 @@ void renderFrames(const Frames& f) {
   const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
   auto stepOf = [&](size_t i) { return f.steps[i % perRun]; };
   SequenceStats stats(f.job.repeat, f.job.prefetch);
-  FrameLoads loads(f);
+  StepLoads loads(f.source, f.rank, f.gpu);
   std::optional<uint64_t> shown;  // the step whose scalars frames read
   render::FrameResult frame;      // its pixels' storage is handed from frame to frame
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
-    loads.loadFor(stepOf(0));
+    loads.loadFor(f.field, stepOf(0));
     shown = stepOf(0);
     frame = f.renderer.render(f.settings);
   }
@@ -155,10 +99,10 @@ void renderFrames(const Frames& f) {
     fault::atFrame(i);
     Timer frameTimer;
     render::ScalarSwitch scalars;
-    if (shown != stepOf(i)) scalars = loads.loadFor(stepOf(i));
+    if (shown != stepOf(i)) scalars = loads.loadFor(f.field, stepOf(i));
     shown = stepOf(i);
     if (f.job.prefetch && i + 1 < total && stepOf(i + 1) != stepOf(i))
-      loads.prefetch(stepOf(i + 1));
+      loads.prefetch(f.field, stepOf(i + 1));
     Timer renderTimer;
     frame = f.renderer.render(f.settings, std::move(frame.pixels));
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();

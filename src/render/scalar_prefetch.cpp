@@ -33,6 +33,12 @@ ScalarSwitch ScalarPrefetcher::swap() {
   return s;
 }
 
+void ScalarPrefetcher::discard() {
+  if (!pending_.valid()) return;
+  pending_.wait();
+  pending_ = {};
+}
+
 ScalarSwitch ScalarPrefetcher::loadNow(const Load& load) {
   SM_CHECK(!pending_.valid());  // setScalars may not run beside stageScalars
   ScalarSwitch s;

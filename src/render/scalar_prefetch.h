@@ -38,6 +38,9 @@ class ScalarPrefetcher {
   // Between frames: waits for the prefetch, rethrows its error, makes its scalars the ones frames
   // read.
   ScalarSwitch swap();
+  // Waits for a prefetch under way and drops its scalars and its error (the step it loaded is
+  // not going to be shown); the buffer frames read is untouched.
+  void discard();
   // Without a prefetch (the first frame, or prefetching off): loads and uploads now, on this
   // thread, into the buffer frames read.
   ScalarSwitch loadNow(const Load& load);

@@ -255,6 +255,18 @@ env -u DISPLAY -u WAYLAND_DISPLAY mpiexec -n 3 --oversubscribe "$sm" view checke
 check "view of step 1 of cell data on 3 ranks as render's image" render3s.png view3s.png
 "$sm" render checker.pvtu --field s --time 0 "${small[@]}" --range 1.8,5 --out render3s0.png
 if cmp -s render3s0.png view3s.png; then echo "FAIL: the viewer's step 1 is step 0"; fails=$((fails + 1)); fi
+# Played, each frame shows the next step, read ahead while the frame before renders: the next
+# step's cells are read on a thread and averaged over the ranks when its frame comes. Four frames
+# of the two steps end on step 1, three of them read ahead.
+played=$(env -u DISPLAY -u WAYLAND_DISPLAY mpiexec -n 3 --oversubscribe "$sm" view checker.pvtu \
+  --field s "${small[@]}" --range 1.8,5 --headless --play --frames 4 --print-camera \
+  --screenshot view3p.png)
+check "view --play of cell data on 3 ranks: frame 4 as render's step 1" render3s.png view3p.png
+if grep -qF '"prefetched_steps":3' <<<"$played" && grep -qF '"time":1' <<<"$played"; then
+  echo "ok: view --play read 3 steps of cell data ahead on 3 ranks"
+else
+  echo "FAIL: view --play on 3 ranks: $played"; fails=$((fails + 1))
+fi
 # The image is not empty (a blank image would match the others too).
 python3 - <<'PY' || fails=$((fails + 1))
 import struct, sys

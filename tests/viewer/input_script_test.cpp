@@ -115,7 +115,7 @@ TEST(ViewerInput, MovesWithoutAButtonDoNothing) {
   EXPECT_EQ(s.eye, startState().eye);
 }
 
-TEST(ViewerInput, KeysChangeStepFieldColormapOpacityAndSampling) {
+TEST(ViewerInput, KeysChangeStepFieldColormapOpacitySamplingAndPlay) {
   InputHandler h(startState().camera(), choices());
   LocalRequests local;
   ViewState s = startState();
@@ -131,6 +131,12 @@ TEST(ViewerInput, KeysChangeStepFieldColormapOpacityAndSampling) {
   EXPECT_EQ(local.screenshots.size(), 1u);
   EXPECT_TRUE(local.toggleOverlay);
   EXPECT_EQ(s.quit, 0u);
+  EXPECT_EQ(s.playing, 0u);
+  play("key space\n", h, s, local);
+  EXPECT_EQ(s.playing, 1u);
+  EXPECT_EQ(s.step, 1);  // the viewer advances a playing state, once per frame
+  play("key space\n", h, s, local);
+  EXPECT_EQ(s.playing, 0u);
   play("drag left 40 0\nkey r\n", h, s, local);  // reset view
   EXPECT_EQ(s.eye, startState().eye);
   play("key escape\n", h, s, local);

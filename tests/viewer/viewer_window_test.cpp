@@ -194,6 +194,70 @@ TEST(ViewerHeadless, StepsAreReadFromTheFileWhenShown) {
   EXPECT_EQ(ranged.err, want);
 }
 
+// Writes `text` to dir/name and returns the path.
+std::string writeFile(const std::string& dir, const std::string& name, const char* text) {
+  const std::string path = dir + "/" + name;
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(text, f);
+  std::fclose(f);
+  return path;
+}
+
+// The screenshot equals `render --time STEP` at the viewer's camera and settings.
+void expectShotIsRenderOfStep(const std::string& dir, const std::string& mesh,
+                              const nlohmann::json& j, const std::string& shot, int step,
+                              const char* tag) {
+  ASSERT_EQ(j["time"], step) << tag;
+  const std::string out = dir + "/" + tag + "-render.png";
+  CommandResult r =
+      runCommand(shellmarch() + " render " + quote(mesh) + renderArgs(j) + " --out " + quote(out),
+                 dir, std::string(tag) + "-render");
+  expectCleanRun(r);
+  const scene::ImageError e = scene::compareImages(scene::readPng(shot), scene::readPng(out));
+  EXPECT_LE(e.maxAbs, 1.0 / 255 + 1e-6) << tag;
+}
+
+// Playing shows a step a frame, each read and uploaded on a thread while the frame before
+// renders; a step the user skips while it is read ahead is dropped, its read error with it
+// (step 2 of the test series is corrupt), and a step shown is read or fails as before.
+TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
+  const std::string dir = outputDir("ViewerHeadless.Play");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
+                           quote(mesh) + " --field vortex --size 32x24 --headless --print-camera ";
+  // Steps 0 1 2 0 1: four of the five frames find their step read ahead.
+  const std::string played = dir + "/played.png";
+  CommandResult r =
+      runCommand(view + "--play --frames 5 --screenshot " + quote(played), dir, "play");
+  expectCleanRun(r);
+  nlohmann::json j = lastJson(r.out);
+  EXPECT_EQ(j["playing"], true);
+  EXPECT_EQ(j["prefetched_steps"], 4);
+  expectShotIsRenderOfStep(dir, mesh, j, played, 1, "played");
+
+  corruptArray(dir + "/cube/cube_0.vtu", "vortex@t2");
+  // Space starts playing (step 0, then 1 while 2 is read ahead and fails), left goes back to 0
+  // (the read of 2 is dropped), space pauses on 0.
+  const std::string back = dir + "/back.png";
+  const std::string skip = writeFile(dir, "skip.txt",
+                                     "key space\nframe 2\nkey left\nframe\nkey space\nframe\n"
+                                     "quit\n");
+  r = runCommand(view + "--range 0,1 --script " + quote(skip) + " --screenshot " + quote(back), dir,
+                 "skip");
+  expectCleanRun(r);
+  j = lastJson(r.out);
+  EXPECT_EQ(j["playing"], false);
+  EXPECT_EQ(j["prefetched_steps"], 1);
+  expectShotIsRenderOfStep(dir, mesh, j, back, 0, "back");
+
+  const std::string on = writeFile(dir, "on.txt", "key space\nframe 3\nquit\n");
+  r = runCommand(view + "--range 0,1 --script " + quote(on), dir, "shown");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "shellmarch: error: " + dir +
+                       "/cube/cube_0.vtu: point array 'vortex@t2': compressed block 0 is corrupt "
+                       "(zlib: data error)\n");
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

@@ -15,11 +15,11 @@ int cycle(int value, int delta, size_t count) {
 
 Key keyFromName(const std::string& name) {
   static const std::map<std::string, Key> keys = {
-      {"right", Key::NextStep},  {"left", Key::PrevStep},   {"up", Key::MoreOpaque},
-      {"down", Key::LessOpaque}, {"f", Key::NextField},     {"c", Key::NextColormap},
-      {"[", Key::FinerStep},     {"]", Key::CoarserStep},   {"r", Key::ResetView},
-      {"s", Key::Screenshot},    {"o", Key::ToggleOverlay}, {"h", Key::Help},
-      {"q", Key::Quit},          {"escape", Key::Quit}};
+      {"right", Key::NextStep}, {"space", Key::TogglePlay}, {"left", Key::PrevStep},
+      {"up", Key::MoreOpaque},  {"down", Key::LessOpaque},  {"f", Key::NextField},
+      {"c", Key::NextColormap}, {"[", Key::FinerStep},      {"]", Key::CoarserStep},
+      {"r", Key::ResetView},    {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
+      {"h", Key::Help},         {"q", Key::Quit},           {"escape", Key::Quit}};
   auto it = keys.find(name);
   return it == keys.end() ? Key::None : it->second;
 }
@@ -30,6 +30,7 @@ std::string controlsHelp() {
          "  middle drag, shift+left drag  pan\n"
          "  wheel, right drag             zoom\n"
          "  right / left                  next / previous time step\n"
+         "  space                         play / pause: a step a frame, the next read ahead\n"
          "  f / shift+f                   next / previous field\n"
          "  c / shift+c                   next / previous colour map\n"
          "  up / down                     opacity scale times / divided by 1.25\n"
@@ -108,6 +109,9 @@ void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& l
       break;
     case Key::PrevStep:
       --state.step;
+      break;
+    case Key::TogglePlay:
+      state.playing = !state.playing;
       break;
     case Key::MoreOpaque:
       state.opacityScale *= kOpacityFactor;

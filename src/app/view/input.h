@@ -15,6 +15,7 @@ enum class Key {
   None,
   NextStep,       // right arrow
   PrevStep,       // left arrow
+  TogglePlay,     // space
   MoreOpaque,     // up arrow
   LessOpaque,     // down arrow
   NextField,      // f (shift: previous)

@@ -92,11 +92,12 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   prepareSeconds_ = prep.seconds();
   ctx_ = std::make_unique<vk::Context>(vo);
   gpu_ = std::make_unique<render::GpuScene>(*ctx_, prepared_.rank);
+  loads_ = std::make_unique<app::StepLoads>(*source_, prepared_.rank, *gpu_);
 }
 
 ViewScene::~ViewScene() = default;
 
-ViewState ViewScene::initialState(int width, int height) const {
+ViewState ViewScene::initialState(int width, int height, bool playing) const {
   ViewState s;
   s.setCamera(home_);
   s.opacityScale = job_.opacityScale;
@@ -104,6 +105,7 @@ ViewState ViewScene::initialState(int width, int height) const {
   s.width = width;
   s.height = height;
   s.step = parseViewStep(job_.time);
+  s.playing = playing;
   return s;
 }
 
@@ -142,13 +144,28 @@ FieldInfo ViewScene::describeField(const std::string& name,
   return f;
 }
 
-void ViewScene::applyState(ViewState& state) {
-  if (state.field != fieldIndex_) selectField(state.field);
+// The range pass of a new field reads steps on this thread: no prefetch may read beside it.
+void ViewScene::applyStep(ViewState& state) {
+  if (state.field != fieldIndex_) {
+    loads_->discard();
+    selectField(state.field);
+  }
   state.step = wrap(state.step, field_.steps);
   if (state.step != step_) {
-    gpu_->setScalars(source_->scalars(prepared_.rank, field_.name, uint64_t(state.step)));
+    const render::ScalarSwitch s = loads_->loadFor(field_.name, uint64_t(state.step));
+    prefetchedSteps_ += s.prefetched;
+    scalarWaitMs_ += s.waitMs;
+    scalarLoadMs_ += s.loadMs + s.uploadMs;
     step_ = state.step;
   }
+  // Every rank plays the same broadcast state, so the collective half of a streamed cell
+  // field's prefetch (loadFor) comes at the same frame on every rank.
+  if (state.playing && field_.steps > 1)
+    loads_->prefetch(field_.name, uint64_t(wrap(state.step + 1, field_.steps)));
+}
+
+void ViewScene::applyState(ViewState& state) {
+  applyStep(state);
   if (state.colormap != colormap_) {
     const double lo = settings_.transferFunction.lo, hi = settings_.transferFunction.hi;
     const double unit = settings_.transferFunction.unitDistance;

@@ -1,7 +1,8 @@
 // One rank's side of the viewer: its share of the data on the GPU, and the compositor and renderer
 // for the current image size. render() first makes the GPU side match the broadcast state: a new
 // time step or field uploads scalars only, a new size rebuilds compositor and renderer, a new
-// colour map, opacity or step only changes the frame's settings.
+// colour map, opacity or step only changes the frame's settings. While the state plays, the
+// next step is read and uploaded on a thread of its own while the frame renders.
 //
 // Every rank calls render() with the same state, because a new field needs collectives (its
 // steps and range over all ranks) and compositing is collective.
@@ -17,6 +18,7 @@
 #include "app/rank_pipeline.h"
 #include "app/rank_share.h"
 #include "app/render_job.h"
+#include "app/step_loads.h"
 #include "app/step_source.h"
 #include "app/view/view_state.h"
 #include "render/renderer.h"
@@ -38,7 +40,7 @@ class ViewScene {
 
   const ViewChoices& choices() const { return choices_; }
   // The state of the first frame (the job's camera, field, step, colour map, sampling).
-  ViewState initialState(int width, int height) const;
+  ViewState initialState(int width, int height, bool playing) const;
   const scene::Camera& homeCamera() const { return home_; }
 
   // Brings the GPU side in line with `state` (normalising its step into the field's steps) and
@@ -50,6 +52,12 @@ class ViewScene {
   const render::GpuScene& gpu() const { return *gpu_; }
   const FieldInfo& field() const { return field_; }
   const render::RenderSettings& settings() const { return settings_; }
+  // Steps whose scalars a prefetch had loaded when they were shown, and what loading the steps
+  // shown cost, the first frame's included: the frames' wait for their scalars, and reading and
+  // uploading them on whichever thread did it (ms, summed).
+  uint64_t prefetchedSteps() const { return prefetchedSteps_; }
+  double scalarWaitMs() const { return scalarWaitMs_; }
+  double scalarLoadMs() const { return scalarLoadMs_; }
   double loadSeconds() const { return loadSeconds_; }
   double prepareSeconds() const { return prepareSeconds_; }
 
@@ -57,6 +65,7 @@ class ViewScene {
   void selectField(int index);
   FieldInfo describeField(const std::string& name, std::optional<std::pair<double, double>> range);
   void applyState(ViewState& state);
+  void applyStep(ViewState& state);
 
   const app::RenderJob& job_;
   app::Collectives& coll_;
@@ -70,6 +79,9 @@ class ViewScene {
   double loadSeconds_ = 0, prepareSeconds_ = 0;
   std::unique_ptr<vk::Context> ctx_;
   std::unique_ptr<render::GpuScene> gpu_;
+  std::unique_ptr<app::StepLoads> loads_;  // after gpu_: its prefetch thread writes there
+  uint64_t prefetchedSteps_ = 0;
+  double scalarWaitMs_ = 0, scalarLoadMs_ = 0;
   std::unique_ptr<comp::DeepCompositor> compositor_;
   std::unique_ptr<render::Renderer> renderer_;
   render::RenderSettings settings_;

@@ -24,6 +24,7 @@ struct ViewState {
   int32_t step = 0;      // time step; ranks wrap it into the field's steps
   int32_t field = 0;     // index into ViewChoices::fields
   int32_t colormap = 0;  // index into ViewChoices::colormaps
+  uint32_t playing = 0;  // 1: each frame shows the next step (rank 0 advances it)
   uint32_t frame = 0;    // frames rendered before this one
   uint32_t quit = 0;     // 1: no frame; every rank leaves the loop
 

@@ -96,7 +96,7 @@ Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Colle
     presenter_ = std::make_unique<Presenter>(*window_, scene_->context(), job.background);
     input_ = std::make_unique<InputHandler>(scene_->homeCamera(), scene_->choices());
   }
-  state_ = scene_->initialState(job.width, job.height);
+  state_ = scene_->initialState(job.width, job.height, options.play);
   log::info("view: loaded in ", scene_->loadSeconds(), " s, prepared in ", scene_->prepareSeconds(),
             " s");
 }
@@ -123,6 +123,8 @@ void Viewer::gatherInput() {
   std::vector<InputEvent> events;
   window_->poll(events);
   const bool scripted = script_.nextFrame(events);
+  const int32_t step = state_.step;
+  const bool playing = state_.playing;
   applyEvents(events);
   // Nothing to draw into while minimised: wait for the window to come back.
   auto [w, h] = window_->framebufferSize();
@@ -138,6 +140,9 @@ void Viewer::gatherInput() {
   if (options_.frames > 0 && state_.frame >= uint32_t(options_.frames)) state_.quit = 1;
   // Headless, a finished script is the end (there is no other input).
   if (!scripted && window_->headless() && options_.frames == 0) state_.quit = 1;
+  // Playing, each frame after the first shows the next step, unless input picked one.
+  if (playing && state_.playing && state_.step == step && state_.frame > 0 && !state_.quit)
+    ++state_.step;
 }
 
 void Viewer::applyEvents(std::vector<InputEvent>& events) {
@@ -177,7 +182,8 @@ std::vector<std::string> Viewer::overlayLines() const {
                   fmt(" (RENDER %.1f MS)", renderMs_));
   lines.push_back(fmt("%.2f FRAGMENTS/PIXEL", fragmentsPerPixel_));
   lines.push_back(f.name + " STEP " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
-                  "  " + scene_->choices().colormaps[size_t(state_.colormap)]);
+                  (state_.playing ? " PLAYING  " : "  ") +
+                  scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
   return lines;
 }
@@ -210,6 +216,7 @@ nlohmann::json Viewer::report(uint64_t errors) const {
   j["fovy"] = state_.fovyDeg;
   j["field"] = f.name;
   j["time"] = state_.step;
+  j["playing"] = bool(state_.playing);
   j["colormap"] = colormap;
   j["range"] = {f.range.first, f.range.second};
   j["opacity_scale"] = state_.opacityScale;
@@ -223,6 +230,9 @@ nlohmann::json Viewer::report(uint64_t errors) const {
                {"at", {home.at.x, home.at.y, home.at.z}}};
   j["geometry_builds"] = scene_->gpu().geometryBuilds();
   j["scalar_uploads"] = scene_->gpu().scalarUploads();
+  j["prefetched_steps"] = scene_->prefetchedSteps();
+  j["scalar_wait_ms"] = scene_->scalarWaitMs();
+  j["scalar_load_ms"] = scene_->scalarLoadMs();
   // What `shellmarch render` needs, besides the data options given to view, for this frame.
   j["render_args"] = {"--size=" + std::to_string(lastWidth_) + "x" + std::to_string(lastHeight_),
                       "--eye=" + vec(state_.eye),

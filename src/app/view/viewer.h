@@ -16,6 +16,7 @@ struct ViewOptions {
   bool printCamera = false;  // one JSON line on stdout at exit: camera, settings, render args
   bool headless = false;     // no window: VK_EXT_headless_surface, input from --script only
   bool overlay = true;
+  bool play = false;  // start playing: a step a frame (space pauses)
 };
 
 void runView(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll);

@@ -33,6 +33,8 @@ Key keyOf(int key) {
       return Key::NextStep;
     case GLFW_KEY_LEFT:
       return Key::PrevStep;
+    case GLFW_KEY_SPACE:
+      return Key::TogglePlay;
     case GLFW_KEY_UP:
       return Key::MoreOpaque;
     case GLFW_KEY_DOWN:

@@ -1,0 +1,54 @@
+// Loads the scalars of the steps frames show, now or ahead of the frame, through a
+// render::ScalarPrefetcher: `render --time all` prefetches the next step of its sequence, and
+// `view` the next step while it plays. A collective source (streamed cell data) reads its next
+// step's cells ahead on a thread of its own; averaging them onto the points takes every rank, so
+// it runs when the frame starts.
+#pragma once
+
+#include <cstdint>
+#include <future>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/step_source.h"
+#include "render/scalar_prefetch.h"
+
+namespace sm::app {
+
+class StepLoads {
+ public:
+  // All three must outlive the loads.
+  StepLoads(const StepSource& source, const prep::PreparedRank& rank, render::GpuScene& gpu)
+      : source_(source), rank_(rank), prefetcher_(gpu) {}
+
+  // Before a frame of `field`'s `step`: from the prefetch when it loaded that step, otherwise now
+  // (a prefetch of another step is waited for and dropped first). Collective for a collective
+  // source.
+  render::ScalarSwitch loadFor(const std::string& field, uint64_t step);
+  // While a frame renders, the next one's step (one thread, leaving the cores to the frame). A
+  // prefetch of that step already under way is kept; one of another step is dropped.
+  void prefetch(const std::string& field, uint64_t step);
+  // Waits for a prefetch under way and drops it, errors included: its step is not shown.
+  void discard();
+  // The step a prefetch is loading, if any.
+  const std::optional<std::pair<std::string, uint64_t>>& ahead() const { return ahead_; }
+
+ private:
+  struct CellsRead {
+    std::vector<float> values;
+    double ms;
+  };
+  render::ScalarPrefetcher::Load load(const std::string& field, uint64_t step,
+                                      unsigned threads) const;
+  render::ScalarSwitch takeCells();
+
+  const StepSource& source_;
+  const prep::PreparedRank& rank_;
+  render::ScalarPrefetcher prefetcher_;
+  std::future<CellsRead> cellsAhead_;
+  std::optional<std::pair<std::string, uint64_t>> ahead_;
+};
+
+}  // namespace sm::app
