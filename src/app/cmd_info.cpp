@@ -5,6 +5,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,14 +56,9 @@ Components componentsOf(const InfoOptions& o, const io::ReadOptions& read) {
   return out;
 }
 
-nlohmann::json componentsJson(const Components& c, const std::string& name) {
+std::optional<uint32_t> componentCount(const Components& c, const std::string& name) {
   auto it = c.find(name);
-  return it == c.end() ? nlohmann::json(nullptr) : nlohmann::json(it->second);
-}
-
-uint32_t vectorComponents(const Components& c, const std::string& name) {
-  auto it = c.find(name);
-  return it == c.end() || it->second < 2 ? 0u : it->second;
+  return it == c.end() ? std::nullopt : std::optional(it->second);
 }
 
 nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m,
@@ -95,11 +91,13 @@ nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m,
   j["timeValues"] = m.timeValues;
   j["cellArrays"] = m.cellArrays;  // fields only when named (averaged onto the points)
   j["fields"] = nlohmann::json::array();
-  for (const mesh::Field& f : m.fields)
+  for (const mesh::Field& f : m.fields) {
+    const std::optional<uint32_t> count = componentCount(components, f.name);
     j["fields"].push_back({{"name", f.name},
                            {"steps", f.numSteps()},
-                           {"components", componentsJson(components, f.name)},
+                           {"components", count ? nlohmann::json(*count) : nlohmann::json()},
                            {"range", rangeJson(mesh::fieldRange(f))}});
+  }
   return j;
 }
 
@@ -141,7 +139,8 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
   for (const mesh::Field& f : m.fields) {
     const mesh::Range r = mesh::fieldRange(f);
     // Names come from the file: printed as one printable line each, as messages are.
-    const uint32_t n = vectorComponents(components, f.name);
+    const uint32_t all = componentCount(components, f.name).value_or(1);
+    const uint32_t n = all > 1 ? all : 0;
     // A vector renders as its magnitude: say so, with the names that render one component.
     const std::string magnitude =
         n ? concat("the magnitude of ", n, " components (", printableLine(f.name), "[0] .. ",
