@@ -95,6 +95,10 @@ class Context {
   // record and submit one at a time and wait for their own work side by side (`record` must not
   // call submitAndWait).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+  // The queue is externally synchronised, and submitAndWait may run on another thread (a step
+  // read ahead uploads there): hold this around any other use of queue(), and around
+  // vkDeviceWaitIdle. Not while calling submitAndWait.
+  std::unique_lock<std::mutex> lockQueue() const { return std::unique_lock(submitMutex_); }
 
   // Validation messages seen so far (errors and warnings), for tests.
   uint64_t validationErrors() const { return errors_; }

@@ -128,7 +128,10 @@ Swapchain::Swapchain(const Context& ctx, const Surface& surface, VkExtent2D want
 }
 
 Swapchain::~Swapchain() {
-  vkDeviceWaitIdle(ctx_.device());
+  {
+    auto queue = ctx_.lockQueue();
+    vkDeviceWaitIdle(ctx_.device());
+  }
   destroyImages();
   if (swapchain_) vkDestroySwapchainKHR(ctx_.device(), swapchain_, nullptr);
 }
@@ -191,8 +194,11 @@ void Swapchain::create(VkExtent2D wanted) {
 
 void Swapchain::recreate(VkExtent2D wanted) {
   // Waiting for the queue also waits for the presentations that still hold our semaphores.
-  SM_VK(vkQueueWaitIdle(ctx_.queue()));
-  SM_VK(vkDeviceWaitIdle(ctx_.device()));
+  {
+    auto queue = ctx_.lockQueue();
+    SM_VK(vkQueueWaitIdle(ctx_.queue()));
+    SM_VK(vkDeviceWaitIdle(ctx_.device()));
+  }
   destroyImages();
   create(wanted);
   ++recreations_;
@@ -251,7 +257,10 @@ void Swapchain::submit(uint32_t index) {
   si.pCommandBuffers = &cmd_;
   si.signalSemaphoreCount = 1;
   si.pSignalSemaphores = &signal;
-  SM_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence));
+  {
+    auto queue = ctx_.lockQueue();
+    SM_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence));
+  }
   submitted_ = true;
 }
 
@@ -278,7 +287,10 @@ PresentResult Swapchain::present(const HostImage& image, const uint8_t fill[4]) 
   pi.swapchainCount = 1;
   pi.pSwapchains = &swapchain_;
   pi.pImageIndices = &index;
-  r = vkQueuePresentKHR(ctx_.queue(), &pi);
+  {
+    auto queue = ctx_.lockQueue();
+    r = vkQueuePresentKHR(ctx_.queue(), &pi);
+  }
   if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR || suboptimal)
     return PresentResult::OutOfDate;
   SM_VK(r);

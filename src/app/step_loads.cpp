@@ -1,6 +1,5 @@
 #include "app/step_loads.h"
 
-#include "common/check.h"
 #include "common/timer.h"
 
 namespace sm::app {

@@ -32,8 +32,6 @@ class StepLoads {
   void prefetch(const std::string& field, uint64_t step);
   // Waits for a prefetch under way and drops it, errors included: its step is not shown.
   void discard();
-  // The step a prefetch is loading, if any.
-  const std::optional<std::pair<std::string, uint64_t>>& ahead() const { return ahead_; }
 
  private:
   struct CellsRead {
@@ -48,7 +46,7 @@ class StepLoads {
   const prep::PreparedRank& rank_;
   render::ScalarPrefetcher prefetcher_;
   std::future<CellsRead> cellsAhead_;
-  std::optional<std::pair<std::string, uint64_t>> ahead_;
+  std::optional<std::pair<std::string, uint64_t>> ahead_;  // the step a prefetch is loading
 };
 
 }  // namespace sm::app
