@@ -143,6 +143,17 @@ TEST(ViewerInput, KeysChangeStepFieldColormapOpacitySamplingAndPlay) {
   EXPECT_EQ(s.quit, 1u);
 }
 
+// Held down, a stepping key steps again with each auto-repeat; space would toggle play on and
+// off, so toggles act once per press.
+TEST(ViewerInput, HeldKeysRepeatOnlyWhenTheyStep) {
+  for (Key k : {Key::NextStep, Key::PrevStep, Key::MoreOpaque, Key::LessOpaque, Key::NextField,
+                Key::NextColormap, Key::FinerStep, Key::CoarserStep})
+    EXPECT_TRUE(keyRepeats(k)) << int(k);
+  for (Key k : {Key::TogglePlay, Key::ToggleOverlay, Key::Screenshot, Key::Help, Key::Quit,
+                Key::ResetView, Key::None})
+    EXPECT_FALSE(keyRepeats(k)) << int(k);
+}
+
 TEST(ViewerOverlay, DrawsTheGlyphsInsideItsBox) {
   const int w = 64, h = 32;
   std::vector<uint8_t> img(size_t(w) * h * 4, 100);

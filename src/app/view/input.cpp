@@ -24,6 +24,22 @@ Key keyFromName(const std::string& name) {
   return it == keys.end() ? Key::None : it->second;
 }
 
+bool keyRepeats(Key key) {
+  switch (key) {
+    case Key::NextStep:
+    case Key::PrevStep:
+    case Key::MoreOpaque:
+    case Key::LessOpaque:
+    case Key::NextField:
+    case Key::NextColormap:
+    case Key::FinerStep:
+    case Key::CoarserStep:
+      return true;
+    default:
+      return false;
+  }
+}
+
 std::string controlsHelp() {
   return "shellmarch view controls:\n"
          "  left drag                     orbit about the point looked at\n"

@@ -42,6 +42,9 @@ struct InputEvent {
 
 // Key names as scripts and the controls table spell them ("right", "f", "[", ...).
 Key keyFromName(const std::string& name);
+// Whether a key held down acts again with each of the window's auto-repeats: stepping keys do;
+// toggles (play, overlay), screenshots, help and quit act once per press.
+bool keyRepeats(Key key);
 std::string controlsHelp();
 
 // Requests that are not part of the broadcast state: they concern rank 0 only.

@@ -183,7 +183,7 @@ void Window::onScroll(GLFWwindow* w, double, double dy) {
 void Window::onKey(GLFWwindow* w, int key, int, int action, int mods) {
   if (action == GLFW_RELEASE) return;
   Key k = keyOf(key);
-  if (k == Key::None) return;
+  if (k == Key::None || (action == GLFW_REPEAT && !keyRepeats(k))) return;
   owner(w)->queued_.push_back(
       {InputEvent::Type::KeyPress, 0, 0, Button::Left, k, bool(mods & GLFW_MOD_SHIFT), {}});
 }
