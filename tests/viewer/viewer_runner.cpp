@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -29,6 +30,12 @@ int shiftOf(uint32_t mask) {
 }
 
 }  // namespace
+
+std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = joinPath(dir, name);
+  writeBytesAtomically(path, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+  return path;
+}
 
 std::string quote(const std::string& s) {
   std::string q(1, '\'');

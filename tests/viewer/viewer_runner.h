@@ -17,6 +17,8 @@ struct CommandResult {
 };
 
 std::string quote(const std::string& s);
+// Writes `text` (a script, say) to dir/name and returns the path.
+std::string writeFile(const std::string& dir, const std::string& name, const std::string& text);
 // Runs `command` through the shell, stdout and stderr to files in `dir` named after `tag`.
 CommandResult runCommand(const std::string& command, const std::string& dir,
                          const std::string& tag);

@@ -115,13 +115,10 @@ TEST(ViewerWindow, WhatReachesTheScreenIsTheScreenshotPlusOverlay) {
 // rounding of compositing a ray's samples in one fragment or in several (one per rank).
 TEST(ViewerMpi, TwoRanksShowWhatOneRankShows) {
   const std::string dir = outputDir("ViewerMpi.TwoRanks");
-  const std::string mesh = generateTestMesh(dir), script = dir + "/session.txt";
-  {
-    std::FILE* f = std::fopen(script.c_str(), "w");
-    std::fputs("drag left 50 -15 3\nscroll 1\nframe\ndrag middle -8 4\nkey right\nframe 2\nquit\n",
-               f);
-    std::fclose(f);
-  }
+  const std::string mesh = generateTestMesh(dir);
+  const std::string script = writeFile(
+      dir, "session.txt",
+      "drag left 50 -15 3\nscroll 1\nframe\ndrag middle -8 4\nkey right\nframe 2\nquit\n");
   auto view = [&](const std::string& launcher, const std::string& tag) {
     const std::string shot = dir + "/" + tag + ".png";
     CommandResult r =

@@ -40,11 +40,7 @@ const char* kScript =
     "quit\n";
 
 std::string writeScript(const std::string& dir) {
-  const std::string path = dir + "/session.txt";
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs(kScript, f);
-  std::fclose(f);
-  return path;
+  return writeFile(dir, "session.txt", kScript);
 }
 
 void expectCleanRun(const CommandResult& r) {
@@ -75,22 +71,30 @@ void expectScriptedState(const nlohmann::json& j) {
   EXPECT_LT(glm::dot(glm::normalize(eye - at), glm::normalize(homeEye - homeAt)), 0.99);  // orbited
 }
 
-// The screenshot equals `shellmarch render` at the viewer's final camera and settings.
-void expectMatchesRender(const std::string& dir, const std::string& mesh, const nlohmann::json& j,
-                         const std::string& shot) {
-  const std::string out = dir + "/render.png";
-  CommandResult r =
-      runCommand(shellmarch() + " render " + quote(mesh) + renderArgs(j) + " --out " + quote(out),
-                 dir, "render");
+// The screenshot equals `shellmarch render` at the viewer's final camera, step and settings (the
+// report's render_args); `tag` names the files. Returns the screenshot.
+scene::Image expectMatchesRender(const std::string& dir, const std::string& mesh,
+                                 const nlohmann::json& j, const std::string& shot,
+                                 const std::string& tag = "render") {
+  const std::string out = dir + "/" + tag + ".png";
+  CommandResult r = runCommand(
+      shellmarch() + " render " + quote(mesh) + renderArgs(j) + " --out " + quote(out), dir, tag);
   expectCleanRun(r);
-  const scene::Image view = scene::readPng(shot), render = scene::readPng(out);
+  scene::Image view = scene::readPng(shot);
+  const scene::ImageError e = scene::compareImages(view, scene::readPng(out));
+  std::printf("%s: viewer screenshot vs render: RMSE %.3g, max abs %.3g (8-bit steps %.1f)\n",
+              tag.c_str(), e.rmse, e.maxAbs, e.maxAbs * 255);
+  EXPECT_LE(e.maxAbs, 1.0 / 255 + 1e-6) << tag;
+  return view;
+}
+
+// The scripted session's screenshot: render's image at the scripted size, not blank.
+void expectScriptedShotMatchesRender(const std::string& dir, const std::string& mesh,
+                                     const nlohmann::json& j, const std::string& shot) {
+  const scene::Image view = expectMatchesRender(dir, mesh, j, shot);
   ASSERT_EQ(view.width, 176);
   ASSERT_EQ(view.height, 132);
-  const scene::ImageError e = scene::compareImages(view, render);
-  std::printf("viewer screenshot vs render: RMSE %.3g, max abs %.3g (8-bit steps %.1f)\n", e.rmse,
-              e.maxAbs, e.maxAbs * 255);
-  EXPECT_LE(e.maxAbs, 1.0 / 255 + 1e-6);
-  EXPECT_GT(pixelsUnlike(view, kBackground), size_t(view.width * view.height / 10));  // not blank
+  EXPECT_GT(pixelsUnlike(view, kBackground), size_t(view.width * view.height / 10));
 }
 
 TEST(ViewerWindow, ScriptedSessionUnderXvfbMatchesRender) {
@@ -104,7 +108,7 @@ TEST(ViewerWindow, ScriptedSessionUnderXvfbMatchesRender) {
   expectCleanRun(r);
   const nlohmann::json j = lastJson(r.out);
   expectScriptedState(j);
-  expectMatchesRender(dir, mesh, j, shot);
+  expectScriptedShotMatchesRender(dir, mesh, j, shot);
 }
 
 TEST(ViewerHeadless, HeadlessSurfaceWithoutADisplayMatchesRender) {
@@ -118,21 +122,17 @@ TEST(ViewerHeadless, HeadlessSurfaceWithoutADisplayMatchesRender) {
   expectCleanRun(r);
   const nlohmann::json j = lastJson(r.out);
   expectScriptedState(j);
-  expectMatchesRender(dir, mesh, j, shot);
+  expectScriptedShotMatchesRender(dir, mesh, j, shot);
 }
 
 // "Finer step" pressed without end stops at a hundredth of the starting step: frames stay
 // interactive, and the step never reaches what float positions along a ray cannot resolve.
 TEST(ViewerHeadless, FinerStepStopsAtAHundredthOfTheStart) {
   const std::string dir = outputDir("ViewerHeadless.FinerStep");
-  const std::string mesh = generateTestMesh(dir), script = dir + "/finer.txt";
-  {
-    std::FILE* f = std::fopen(script.c_str(), "w");
-    std::fputs("frame\n", f);
-    for (int i = 0; i < 40; ++i) std::fputs("key [\n", f);  // 1.25^40: about 7500 times finer
-    std::fputs("frame\nquit\n", f);
-    std::fclose(f);
-  }
+  const std::string mesh = generateTestMesh(dir);
+  std::string finer = "frame\n";
+  for (int i = 0; i < 40; ++i) finer += "key [\n";  // 1.25^40: about 7500 times finer
+  const std::string script = writeFile(dir, "finer.txt", finer + "frame\nquit\n");
   auto run = [&](const std::string& extra, const char* name) {
     CommandResult r =
         runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " + quote(mesh) +
@@ -169,13 +169,10 @@ void corruptArray(const std::string& vtu, const std::string& array) {
 // whole at load, as before, it stopped every session of the file.)
 TEST(ViewerHeadless, StepsAreReadFromTheFileWhenShown) {
   const std::string dir = outputDir("ViewerHeadless.StepsWhenShown");
-  const std::string mesh = generateTestMesh(dir), script = dir + "/steps.txt";
+  const std::string mesh = generateTestMesh(dir);
+  const std::string script =
+      writeFile(dir, "steps.txt", "frame\nkey right\nframe\nkey right\nframe\nquit\n");
   corruptArray(dir + "/cube/cube_0.vtu", "vortex@t2");
-  {
-    std::FILE* f = std::fopen(script.c_str(), "w");
-    std::fputs("frame\nkey right\nframe\nkey right\nframe\nquit\n", f);
-    std::fclose(f);
-  }
   const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
                            quote(mesh) + " --field vortex --size 32x24 --headless ";
   CommandResult first = runCommand(view + "--range 0,1 --frames 1 --print-camera", dir, "first");
@@ -194,29 +191,6 @@ TEST(ViewerHeadless, StepsAreReadFromTheFileWhenShown) {
   EXPECT_EQ(ranged.err, want);
 }
 
-// Writes `text` to dir/name and returns the path.
-std::string writeFile(const std::string& dir, const std::string& name, const char* text) {
-  const std::string path = dir + "/" + name;
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs(text, f);
-  std::fclose(f);
-  return path;
-}
-
-// The screenshot equals `render --time STEP` at the viewer's camera and settings.
-void expectShotIsRenderOfStep(const std::string& dir, const std::string& mesh,
-                              const nlohmann::json& j, const std::string& shot, int step,
-                              const char* tag) {
-  ASSERT_EQ(j["time"], step) << tag;
-  const std::string out = dir + "/" + tag + "-render.png";
-  CommandResult r =
-      runCommand(shellmarch() + " render " + quote(mesh) + renderArgs(j) + " --out " + quote(out),
-                 dir, std::string(tag) + "-render");
-  expectCleanRun(r);
-  const scene::ImageError e = scene::compareImages(scene::readPng(shot), scene::readPng(out));
-  EXPECT_LE(e.maxAbs, 1.0 / 255 + 1e-6) << tag;
-}
-
 // Playing shows a step a frame, each read and uploaded on a thread while the frame before
 // renders; a step the user skips while it is read ahead is dropped, its read error with it
 // (step 2 of the test series is corrupt), and a step shown is read or fails as before.
@@ -233,7 +207,8 @@ TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
   nlohmann::json j = lastJson(r.out);
   EXPECT_EQ(j["playing"], true);
   EXPECT_EQ(j["prefetched_steps"], 4);
-  expectShotIsRenderOfStep(dir, mesh, j, played, 1, "played");
+  EXPECT_EQ(j["time"], 1);
+  expectMatchesRender(dir, mesh, j, played, "played-render");
 
   corruptArray(dir + "/cube/cube_0.vtu", "vortex@t2");
   // Space starts playing (step 0, then 1 while 2 is read ahead and fails), left goes back to 0
@@ -248,7 +223,8 @@ TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
   j = lastJson(r.out);
   EXPECT_EQ(j["playing"], false);
   EXPECT_EQ(j["prefetched_steps"], 1);
-  expectShotIsRenderOfStep(dir, mesh, j, back, 0, "back");
+  EXPECT_EQ(j["time"], 0);
+  expectMatchesRender(dir, mesh, j, back, "back-render");
 
   const std::string on = writeFile(dir, "on.txt", "key space\nframe 3\nquit\n");
   r = runCommand(view + "--range 0,1 --script " + quote(on), dir, "shown");
@@ -271,12 +247,8 @@ TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
 
 TEST(ViewerHeadless, BadInputIsOneLineNamingTheOption) {
   const std::string dir = outputDir("ViewerHeadless.BadInput");
-  const std::string mesh = generateTestMesh(dir), script = dir + "/bad.txt";
-  {
-    std::FILE* f = std::fopen(script.c_str(), "w");
-    std::fputs("frame\ndrag sideways 3 4\n", f);
-    std::fclose(f);
-  }
+  const std::string mesh = generateTestMesh(dir);
+  const std::string script = writeFile(dir, "bad.txt", "frame\ndrag sideways 3 4\n");
   const std::pair<std::string, std::string> cases[] = {
       {"--headless", "--headless needs --frames or --script"},
       {"--headless --script " + quote(script), "bad.txt:2: 'drag' needs a button"},
