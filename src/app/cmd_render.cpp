@@ -1,6 +1,6 @@
 // shellmarch render MESH --field NAME [--time K|A:B[:S]|t=TIME|all] [--size WxH] [camera]
 //                        [transfer function] [--step DT] [--clusters N] [--out FILE.png] [--stats]
-//                        [--repeat R] [--no-prefetch]
+//                        [--repeat R] [--no-prefetch] [--orbit N]
 #include <memory>
 
 #include "app/cli_parsers.h"
@@ -8,6 +8,7 @@
 #include "app/render_job.h"
 #include "app/run_parallel.h"
 #include "app/scene_options.h"
+#include "common/error.h"
 
 namespace sm::app {
 
@@ -37,11 +38,18 @@ void registerRender(CLI::App& app) {
       "--repeat", job->repeat,
       "Render the step sequence R times and report fps over the runs (images are written "
       "once)");
+  cmd->add_option("--orbit", job->orbit,
+                  "Turn the camera 360/N degrees about its up axis through the point looked at "
+                  "each frame: with one time step, N frames (one turn) as a numbered image "
+                  "sequence; with several, one frame per step");
   cmd->add_flag_callback(
       "--no-prefetch", [job] { job->prefetch = false; },
       "Load each step when its frame starts instead of while the frame before renders");
-  cmd->callback([job, raw] {
+  cmd->callback([cmd, job, raw] {
     applySceneOptions(*raw, *job);
+    // 0 is "no orbit" inside; given on the command line it is a mistake like a negative count.
+    if (cmd->count("--orbit") && job->orbit < 1)
+      throw Error("--orbit: must be at least 1, not ", job->orbit);
     if (!raw->text["--composite"].empty())
       job->composite = parseCompositeMethod(raw->text["--composite"]);
     runParallel([&](Collectives& coll) { runRender(*job, coll); });

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include "app/frame_extras.h"
@@ -23,6 +24,7 @@
 #include "common/memory.h"
 #include "common/timer.h"
 #include "io/mesh_io.h"
+#include "render/frame_defaults.h"
 #include "render/renderer.h"
 #include "scene/image.h"
 #include "vk/context.h"
@@ -51,10 +53,43 @@ std::pair<double, double> sequenceRange(const std::string& path, const StepSourc
   return {lo, hi};
 }
 
+// One frame of a run: the time step it shows, the camera it shows it from, and the number its
+// image file takes in a sequence.
+struct FramePlan {
+  uint64_t step;
+  scene::Camera camera;
+  uint64_t number;
+};
+
+// The frames of one run. A time sequence is numbered by step. --orbit N turns the camera
+// 360 / N degrees about its up axis each frame, starting from the camera given; with a single
+// step that makes N frames, one full turn, numbered from 0; with several steps, one frame per step
+// as without it, the camera turning as the steps go by.
+std::vector<FramePlan> planFrames(const RenderJob& job, const std::vector<uint64_t>& steps,
+                                  const render::RenderSettings& s, const mesh::Bounds& whole) {
+  const bool turntable = job.orbit > 0 && steps.size() == 1;
+  const size_t count = turntable ? size_t(job.orbit) : steps.size();
+  std::vector<FramePlan> plan;
+  plan.reserve(count);
+  for (size_t i = 0; i < count; ++i) {
+    scene::Camera c = s.camera;
+    if (job.orbit > 0) {
+      // The angle from the frame index, not accumulated: the turn closes on the first frame.
+      c = scene::turnAbout(s.camera,
+                           2.0 * std::numbers::pi * double(i % size_t(job.orbit)) / job.orbit);
+      render::checkStep(s.dt, c.eye,
+                        whole);  // the step must hold from every eye, as from the first
+    }
+    const uint64_t step = steps[turntable ? 0 : i];
+    plan.push_back({step, c, turntable ? uint64_t(i) : step});
+  }
+  return plan;
+}
+
 // What the frames of one render touch.
 struct Frames {
   const RenderJob& job;
-  const std::vector<uint64_t>& steps;
+  const std::vector<FramePlan>& plan;
   const StepSource& source;
   const std::string& field;
   const prep::PreparedRank& rank;
@@ -67,14 +102,14 @@ struct Frames {
 };
 
 // Statistics, extras and the image of a frame of the first run (collective).
-void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
-  f.report.addFrame(step, frame, f.renderer, f.compositor);
-  const bool sequence = f.steps.size() > 1;
-  writeFrameExtras(f.job, f.compositor, frame.pixels, step, sequence, f.coll);
+void writeFrame(const Frames& f, const FramePlan& p, render::FrameResult& frame) {
+  f.report.addFrame(p.step, p.camera, frame, f.renderer, f.compositor);
+  const bool sequence = f.plan.size() > 1;
+  writeFrameExtras(f.job, f.compositor, frame.pixels, p.number, sequence, f.coll);
   if (f.coll.rank() == 0) {
     scene::Image img(f.job.width, f.job.height);
     img.pixels = std::move(frame.pixels);
-    scene::writeImage(framePath(f.job.out, step, sequence), img, f.job.background);
+    scene::writeImage(framePath(f.job.out, p.number, sequence), img, f.job.background);
     frame.pixels = std::move(img.pixels);  // back for the next frame (Renderer::render's reuse)
   }
 }
@@ -83,8 +118,9 @@ void writeFrame(const Frames& f, uint64_t step, render::FrameResult& frame) {
 // before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
 // a frame whose step is the one shown already (one step rendered repeatedly) loads nothing.
 void renderFrames(const Frames& f) {
-  const size_t perRun = f.steps.size(), total = perRun * size_t(f.job.repeat);
-  auto stepOf = [&](size_t i) { return f.steps[i % perRun]; };
+  const size_t perRun = f.plan.size(), total = perRun * size_t(f.job.repeat);
+  auto stepOf = [&](size_t i) { return f.plan[i % perRun].step; };
+  render::RenderSettings settings = f.settings;
   SequenceStats stats(f.job.repeat, f.job.prefetch);
   StepLoads loads(f.source, f.rank, f.gpu);
   std::optional<uint64_t> shown;  // the step whose scalars frames read
@@ -93,7 +129,8 @@ void renderFrames(const Frames& f) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
     loads.loadFor(f.field, stepOf(0));
     shown = stepOf(0);
-    frame = f.renderer.render(f.settings);
+    settings.camera = f.plan[0].camera;
+    frame = f.renderer.render(settings);
   }
   for (size_t i = 0; i < total; ++i) {
     fault::atFrame(i);
@@ -103,11 +140,12 @@ void renderFrames(const Frames& f) {
     shown = stepOf(i);
     if (f.job.prefetch && i + 1 < total && stepOf(i + 1) != stepOf(i))
       loads.prefetch(f.field, stepOf(i + 1));
+    settings.camera = f.plan[i % perRun].camera;
     Timer renderTimer;
-    frame = f.renderer.render(f.settings, std::move(frame.pixels));
+    frame = f.renderer.render(settings, std::move(frame.pixels));
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
-    stats.addFrame(int(i / perRun), f.steps[i % perRun], frameMs, renderMs, scalars);
-    if (i < perRun) writeFrame(f, f.steps[i], frame);
+    stats.addFrame(int(i / perRun), stepOf(i), frameMs, renderMs, scalars);
+    if (i < perRun) writeFrame(f, f.plan[i], frame);
   }
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
 }
@@ -169,6 +207,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
   checkImageSize(job);
   checkOutputs(job);
   if (job.repeat < 1) throw Error("--repeat: must be at least 1, not ", job.repeat);
+  if (job.orbit < 0) throw Error("--orbit: must be at least 1, not ", job.orbit);
   if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
     throw Error("--out: '", job.out, "' must end in .png or .pfm");
   Timer total;
@@ -190,6 +229,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
   const uint64_t peakAfterLoad = peakResidentBytes();
   render::RenderSettings s = makeSettings(job, share, range);
   s.compositeMethod = job.composite;
+  const std::vector<FramePlan> plan = planFrames(job, steps, s, share.wholeBounds);
 
   Timer prepTimer;
   PreparedShare prepared =
@@ -213,7 +253,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
                     ctx.deviceName(), s);
     report.setHostMemory(peakAfterLoad);
     renderFrames(
-        {job, steps, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
+        {job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
     report.finish(ctx.validationErrors());
   } catch (const vk::DeviceMemoryError& e) {
     throw Error(

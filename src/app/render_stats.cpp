@@ -70,7 +70,7 @@ bool StatsReport::wanted() const {
   return job_.stats || !job_.statsJson.empty();
 }
 
-void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
+void StatsReport::addFrame(uint64_t step, const scene::Camera& camera, const render::FrameResult& f,
                            const render::Renderer& renderer, comp::DeepCompositor& compositor) {
   const uint64_t overflow = coll_.sum(uint64_t(f.counters.overflow));
   overflow_ += overflow;
@@ -81,7 +81,9 @@ void StatsReport::addFrame(uint64_t step, const render::FrameResult& f,
   PixelCountSummary frag = summarise(renderer.lastFragmentCounts());
   std::vector<comp::CompositeStats> ranks = compositor.gatherStats();
   nlohmann::json fr;
+  fr["frame"] = frames_ - 1;  // images are written for the first run only: its frame index
   fr["step"] = step;
+  fr["eye"] = {camera.eye.x, camera.eye.y, camera.eye.z};
   fr["total_ms"] = coll_.max(f.timings.totalMs);
   fr["traversal_ms"] = coll_.max(f.timings.traversalMs);
   fr["scan_ms"] = coll_.max(f.timings.scanMs);
@@ -157,14 +159,23 @@ void StatsReport::printFrame(const nlohmann::json& fr) const {
   // Fused frames trace (traverse and march) in one pass; a two-pass frame's second pass then
   // copies what the first cached.
   const bool fused = fr.value("fused", false);
-  std::printf(
-      fused ? "  step %llu: %.1f ms = trace (traversal + march) %.1f + scan %.1f + store %.1f + "
-              "composite %.1f (integration %.1f ms, compositing %.1f ms, slowest rank)\n"
-            : "  step %llu: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
-              "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
-      u("step"), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(),
-      fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(), fr["composite_ms"].get<double>(),
-      fr["integration_ms"].get<double>(), fr["compositing_ms"].get<double>());
+  // An orbit's frames share a step: they are told apart by number and eye.
+  std::string what = concat("step ", u("step"));
+  if (job_.orbit > 0) {
+    const auto& e = fr["eye"];
+    char eye[96];
+    std::snprintf(eye, sizeof eye, "%.4g,%.4g,%.4g", e[0].get<double>(), e[1].get<double>(),
+                  e[2].get<double>());
+    what = concat("frame ", u("frame"), " (", what, ", eye ", eye, ")");
+  }
+  std::printf(fused ? "  %s: %.1f ms = trace (traversal + march) %.1f + scan %.1f + store %.1f + "
+                      "composite %.1f (integration %.1f ms, compositing %.1f ms, slowest rank)\n"
+                    : "  %s: %.1f ms = traversal %.1f + scan %.1f + march %.1f + composite %.1f "
+                      "(integration %.1f ms, compositing %.1f ms, slowest rank)\n",
+              what.c_str(), fr["total_ms"].get<double>(), fr["traversal_ms"].get<double>(),
+              fr["scan_ms"].get<double>(), fr["march_ms"].get<double>(),
+              fr["composite_ms"].get<double>(), fr["integration_ms"].get<double>(),
+              fr["compositing_ms"].get<double>());
   std::printf(
       "    segments/pixel mean %.2f max %.0f; fragments/pixel mean %.2f max %.0f (non-empty "
       "pixels)\n",

@@ -35,8 +35,8 @@ class StatsReport {
   // preparation and the device) and now (after setup: the driver's own memory included).
   void setHostMemory(uint64_t peakAfterLoad);
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
-  void addFrame(uint64_t step, const render::FrameResult& frame, const render::Renderer& renderer,
-                comp::DeepCompositor& compositor);
+  void addFrame(uint64_t step, const scene::Camera& camera, const render::FrameResult& frame,
+                const render::Renderer& renderer, comp::DeepCompositor& compositor);
   // The step sequence's summary (SequenceStats), printed after the frames and kept as "sequence".
   void setSequence(nlohmann::json summary) { json_["sequence"] = std::move(summary); }
   // Prints (rank 0) and writes JSON; throws when validation reported errors.

@@ -91,7 +91,7 @@ nlohmann::json SequenceStats::summary(const render::GpuScene& gpu, Collectives& 
 
 void printSequenceSummary(const nlohmann::json& j) {
   std::printf(
-      "  sequence: %llu steps x %d run(s), prefetch %s: %.2f fps mean over runs (stddev %.2f, "
+      "  sequence: %llu frames x %d run(s), prefetch %s: %.2f fps mean over runs (stddev %.2f, "
       "min %.2f, max %.2f); frame %.1f ms mean (render %.1f ms)\n",
       (unsigned long long)j["steps_per_run"].get<uint64_t>(), j["runs"].get<int>(),
       j["prefetch"].get<bool>() ? "on" : "off", j["fps_mean"].get<double>(),

@@ -91,4 +91,16 @@ glm::dvec3 CameraFrame::direction(double px, double py) const {
   return glm::normalize(forward + u * right + v * upOrtho);
 }
 
+glm::dvec3 rotateAbout(const glm::dvec3& v, const glm::dvec3& k, double a) {
+  return v * std::cos(a) + glm::cross(k, v) * std::sin(a) + k * glm::dot(k, v) * (1 - std::cos(a));
+}
+
+Camera turnAbout(const Camera& c, double angleRad) {
+  Camera turned = c;
+  // The eye sits at -d * forward; turning the offset right-handedly about up moves it towards
+  // forward x up, the camera's right.
+  turned.eye = c.at + rotateAbout(c.eye - c.at, glm::normalize(c.up), angleRad);
+  return turned;
+}
+
 }  // namespace sm::scene

@@ -36,4 +36,11 @@ struct CameraFrame {
 };
 CameraFrame cameraFrame(const Camera& c, int width, int height);  // throws on degenerate cameras
 
+// Rodrigues' rotation of v about the unit axis k by angle a (radians, right-handed).
+glm::dvec3 rotateAbout(const glm::dvec3& v, const glm::dvec3& k, double a);
+// The camera turned about its up axis through `at` by `angleRad`: positive moves the eye towards
+// the camera's right (counter-clockwise seen from above); `at`, `up`, the field of view and the
+// distance to `at` are unchanged. A turntable step, as the viewer's drag and `render --orbit` make.
+Camera turnAbout(const Camera& c, double angleRad);
+
 }  // namespace sm::scene

@@ -149,5 +149,35 @@ TEST(CameraController, RejectsADegenerateHome) {
   EXPECT_THROW(CameraController{c}, Error);
 }
 
+// `render --orbit`'s turn (scene::turnAbout) is the viewer's yaw: the same eye for the same angle,
+// at, up, field of view, distance and height kept, a positive angle towards the camera's right,
+// and a whole turn back where it started.
+TEST(TurnAbout, IsTheViewersYawAndClosesAfterAWholeTurn) {
+  const scene::Camera c = testCamera();
+  for (double a : {0.3, -1.2, 2.5}) {
+    CameraController cc(c);
+    cc.orbit(a, 0.0);
+    const scene::Camera t = scene::turnAbout(c, a);
+    EXPECT_NEAR(glm::length(t.eye - cc.camera().eye), 0.0, 1e-12) << a;
+    EXPECT_EQ(t.at, c.at);
+    EXPECT_EQ(t.up, c.up);
+    EXPECT_EQ(t.fovyDeg, c.fovyDeg);
+    EXPECT_NEAR(dist(t), dist(c), 1e-12);
+    EXPECT_NEAR(t.eye.z, c.eye.z, 1e-12);  // up is +z: the turn is horizontal
+  }
+  const glm::dvec3 right = scene::cameraFrame(c, 1, 1).right;
+  EXPECT_GT(glm::dot(scene::turnAbout(c, 1e-3).eye - c.eye, right), 0.0);
+  scene::Camera whole = c;
+  for (int i = 0; i < 8; ++i) whole = scene::turnAbout(whole, std::numbers::pi / 4);
+  EXPECT_NEAR(glm::length(whole.eye - c.eye), 0.0, 1e-12);
+  // About a tilted up axis the eye stays on the circle about that axis through `at`.
+  scene::Camera tilted = c;
+  tilted.up = {0.0, 1.0, 1.0};
+  const glm::dvec3 axis = glm::normalize(tilted.up);
+  const scene::Camera tt = scene::turnAbout(tilted, 1.0);
+  EXPECT_NEAR(glm::dot(tt.eye - c.at, axis), glm::dot(c.eye - c.at, axis), 1e-12);
+  EXPECT_NEAR(dist(tt), dist(c), 1e-12);
+}
+
 }  // namespace
 }  // namespace sm::view

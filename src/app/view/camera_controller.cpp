@@ -13,11 +13,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Rodrigues' rotation of v about the unit axis k by angle a (right-handed).
-glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& k, double a) {
-  return v * std::cos(a) + glm::cross(k, v) * std::sin(a) + k * glm::dot(k, v) * (1 - std::cos(a));
-}
-
 }  // namespace
 
 CameraController::CameraController(const scene::Camera& home) : home_(home), cam_(home) {
@@ -33,8 +28,8 @@ void CameraController::orbit(double yawRad, double elevationRad) {
   glm::dvec3 offset = cam_.eye - cam_.at;
   const double d = glm::length(offset);
   // The eye sits at -d * forward; rotating the offset right-handedly about up moves it towards
-  // forward x up, the camera's right.
-  offset = rotate(offset, up, yawRad);
+  // forward x up, the camera's right (scene::turnAbout, without the round trip through `at`).
+  offset = scene::rotateAbout(offset, up, yawRad);
   const double vertical = glm::dot(offset, up);
   const glm::dvec3 horizontal = offset - vertical * up;
   const double h = glm::length(horizontal);
