@@ -1,6 +1,6 @@
 // shellmarch view MESH [the data, camera and transfer-function options of render]
 //                      [--frames K] [--script FILE] [--screenshot FILE] [--print-camera]
-//                      [--headless] [--play] [--no-overlay]
+//                      [--headless] [--play] [--fps F] [--no-overlay]
 // An interactive window on rank 0 (GLFW, presented through a Vulkan swapchain); every rank renders
 // every frame. Controls: `shellmarch view --help-controls`; script format: `--help-script`.
 #include <cstdio>
@@ -13,6 +13,7 @@
 #include "app/view/input.h"
 #include "app/view/script.h"
 #include "app/view/viewer.h"
+#include "common/error.h"
 #include "common/file_util.h"
 
 namespace sm::app {
@@ -46,6 +47,9 @@ void registerView(CLI::App& app) {
   cmd->add_flag("--no-overlay", *noOverlay, "Start with the overlay hidden (o toggles it)");
   cmd->add_flag("--play", opts->play,
                 "Start playing the time steps, one a frame, the next read ahead (space pauses)");
+  cmd->add_option("--fps", opts->fps,
+                  "While playing, show at most this many time steps a second (default: a step a "
+                  "frame, as fast as frames come)");
   cmd->add_flag_callback(
       "--help-controls",
       [] {
@@ -60,8 +64,11 @@ void registerView(CLI::App& app) {
         throw CLI::Success();
       },
       "Print the --script format and exit");
-  cmd->callback([job, raw, opts, noOverlay] {
+  cmd->callback([cmd, job, raw, opts, noOverlay] {
     applySceneOptions(*raw, *job);
+    // 0 is "no cap" inside; given on the command line it is a mistake like a negative rate.
+    if (cmd->count("--fps") && !(opts->fps > 0))
+      throw Error("--fps: ", opts->fps, " is not a positive number of steps a second");
     opts->overlay = !*noOverlay;
     runParallel([&](Collectives& coll) { view::runView(*job, *opts, coll); });
   });

@@ -234,6 +234,40 @@ TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
                        "(zlib: data error)\n");
 }
 
+// --fps holds each played step on screen for 1/F s at least (the viewer measures how long each
+// was shown, on the clock it paces by); input still acts at every frame, and without --fps play
+// never waits.
+TEST(ViewerHeadless, FpsHoldsEachPlayedStep) {
+  const std::string dir = outputDir("ViewerHeadless.Fps");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
+                           quote(mesh) + " --field vortex --size 32x24 --headless --print-camera ";
+  CommandResult r = runCommand(view + "--play --frames 5 --fps 4", dir, "capped");
+  expectCleanRun(r);
+  nlohmann::json j = lastJson(r.out);
+  EXPECT_EQ(j["time"], 1);  // steps 0 1 2 0 1
+  EXPECT_EQ(j["fps_cap"], 4.0);
+  ASSERT_TRUE(j["shortest_played_step_ms"].is_number()) << j.dump();
+  EXPECT_GE(j["shortest_played_step_ms"].get<double>(), 250.0 - 1e-6);
+  EXPECT_GT(j["pace_wait_ms"].get<double>(), 0.0);
+
+  // Space pauses between held steps: the step shown stays.
+  const std::string pause = writeFile(dir, "pause.txt", "frame 3\nkey space\nframe 3\nquit\n");
+  r = runCommand(view + "--play --fps 8 --script " + quote(pause), dir, "paused");
+  expectCleanRun(r);
+  j = lastJson(r.out);
+  EXPECT_EQ(j["playing"], false);
+  EXPECT_EQ(j["time"], 2);  // frames 1 and 2 advanced to step 2; paused before frame 3 moved on
+  EXPECT_GE(j["shortest_played_step_ms"].get<double>(), 125.0 - 1e-6);
+
+  r = runCommand(view + "--play --frames 4", dir, "uncapped");
+  expectCleanRun(r);
+  j = lastJson(r.out);
+  EXPECT_EQ(j["fps_cap"], 0.0);
+  EXPECT_EQ(j["pace_wait_ms"], 0.0);
+  EXPECT_EQ(j["time"], 0);  // steps 0 1 2 0
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
@@ -256,6 +290,9 @@ TEST(ViewerHeadless, BadInputIsOneLineNamingTheOption) {
       {"--headless --frames 1 --time all", "--time: 'all' is not a step index"},
       {"--headless --frames -2", "--frames"},
       {"--headless --frames 1 --size 0x4", "--size"},
+      {"--headless --frames 1 --play --fps 0", "--fps: 0 is not a positive number"},
+      {"--headless --frames 1 --play --fps -2", "--fps: -2 is not a positive number"},
+      {"--headless --frames 1 --play --fps nan", "--fps: nan is not a positive number"},
   };
   for (const auto& [args, want] : cases) {
     CommandResult r = runCommand(shellmarch() + " view " + quote(mesh) + " " + args, dir, "view");

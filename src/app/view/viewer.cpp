@@ -1,7 +1,12 @@
 #include "app/view/viewer.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -51,6 +56,7 @@ class Viewer {
  private:
   bool root() const { return coll_.rank() == 0; }
   void gatherInput();
+  bool paceStep(int32_t step);
   void applyEvents(std::vector<InputEvent>& events);
   void show(render::FrameResult& frame, uint64_t fragments);
   std::vector<std::string> overlayLines() const;
@@ -75,11 +81,19 @@ class Viewer {
   uint32_t framesShown_ = 0;
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
+  // --fps: when the step shown last changed, the time spent holding steps back, and the shortest
+  // time a step was shown while playing (rank 0).
+  using Clock = std::chrono::steady_clock;
+  std::optional<Clock::time_point> stepSince_;
+  double paceWaitMs_ = 0;
+  std::optional<double> shortestPlayedStepMs_;
 };
 
 Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll)
     : job_(job), options_(options), coll_(coll), overlay_(options.overlay) {
   if (options.frames < 0) throw Error("--frames: ", options.frames, " is negative");
+  if (!(options.fps >= 0) || !std::isfinite(options.fps))
+    throw Error("--fps: ", options.fps, " is not a positive number of steps a second");
   if (options.headless && options.frames == 0 && options.script.empty())
     throw Error("--headless needs --frames or --script (there is no window to take input from)");
   vk::ContextOptions vo = app::contextOptions(job);
@@ -141,8 +155,43 @@ void Viewer::gatherInput() {
   // Headless, a finished script is the end (there is no other input).
   if (!scripted && window_->headless() && options_.frames == 0) state_.quit = 1;
   // Playing, each frame after the first shows the next step, unless input picked one.
-  if (playing && state_.playing && state_.step == step && state_.frame > 0 && !state_.quit)
+  if (playing && state_.playing && state_.step == step && state_.frame > 0 && !state_.quit &&
+      paceStep(step)) {
+    const Clock::time_point now = Clock::now();
+    if (stepSince_) {
+      const double shown = std::chrono::duration<double, std::milli>(now - *stepSince_).count();
+      shortestPlayedStepMs_ = std::min(shortestPlayedStepMs_.value_or(shown), shown);
+    }
     ++state_.step;
+    stepSince_ = now;
+  } else if (state_.step != step || !stepSince_) {
+    stepSince_ = Clock::now();
+  }
+}
+
+// With --fps F a step stays on screen 1/F s at least before play moves on. The wait keeps taking
+// input, so that a key may pause, pick a step or quit meanwhile; returns whether play may advance
+// from `step` now.
+bool Viewer::paceStep(int32_t step) {
+  if (!(options_.fps > 0) || !stepSince_) return true;
+  const Clock::time_point due =
+      *stepSince_ + std::chrono::duration_cast<Clock::duration>(
+                        std::chrono::duration<double>(1.0 / options_.fps));
+  const Clock::time_point start = Clock::now();
+  for (Clock::time_point now = start; now < due; now = Clock::now()) {
+    const double left = std::chrono::duration<double>(due - now).count();
+    if (window_->headless())
+      std::this_thread::sleep_for(due - now);
+    else
+      window_->wait(left);
+    std::vector<InputEvent> events;
+    window_->poll(events);
+    applyEvents(events);
+    if (window_->closeRequested()) state_.quit = 1;
+    if (!state_.playing || state_.step != step || state_.quit) break;
+  }
+  paceWaitMs_ += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  return state_.playing && state_.step == step && !state_.quit;
 }
 
 void Viewer::applyEvents(std::vector<InputEvent>& events) {
@@ -217,6 +266,10 @@ nlohmann::json Viewer::report(uint64_t errors) const {
   j["field"] = f.name;
   j["time"] = state_.step;
   j["playing"] = bool(state_.playing);
+  j["fps_cap"] = options_.fps;
+  j["pace_wait_ms"] = paceWaitMs_;
+  j["shortest_played_step_ms"] =
+      shortestPlayedStepMs_ ? nlohmann::json(*shortestPlayedStepMs_) : nlohmann::json(nullptr);
   j["colormap"] = colormap;
   j["range"] = {f.range.first, f.range.second};
   j["opacity_scale"] = state_.opacityScale;

@@ -17,6 +17,7 @@ struct ViewOptions {
   bool headless = false;     // no window: VK_EXT_headless_surface, input from --script only
   bool overlay = true;
   bool play = false;  // start playing: a step a frame (space pauses)
+  double fps = 0;     // > 0: while playing, at most this many steps a second
 };
 
 void runView(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll);
