@@ -27,6 +27,7 @@
 #include "render/frame_defaults.h"
 #include "render/renderer.h"
 #include "scene/image.h"
+#include "scene/legend.h"
 #include "vk/context.h"
 #include "vk/vk_error.h"
 
@@ -109,6 +110,8 @@ void writeFrame(const Frames& f, const FramePlan& p, render::FrameResult& frame)
   if (f.coll.rank() == 0) {
     scene::Image img(f.job.width, f.job.height);
     img.pixels = std::move(frame.pixels);
+    if (f.job.legend)
+      scene::drawLegend(img, f.settings.transferFunction, f.field, f.job.background);
     scene::writeImage(framePath(f.job.out, p.number, sequence), img, f.job.background);
     frame.pixels = std::move(img.pixels);  // back for the next frame (Renderer::render's reuse)
   }

@@ -47,6 +47,7 @@ struct RenderJob {
   std::string statsJson;  // write statistics as JSON here
   int repeat = 1;         // render the step sequence this many times (benchmarks); images once
   bool prefetch = true;   // read and upload the next step while a frame renders
+  bool legend = false;    // draw the colour legend (scene/legend.h) into the images written
   int orbit = 0;          // > 0: the camera turns 360 / orbit degrees about its up axis each frame
 };
 

@@ -7,6 +7,7 @@
 #include "app/view/overlay.h"
 #include "app/view/script.h"
 #include "common/error.h"
+#include "scene/bitmap_font.h"
 
 namespace sm::view {
 namespace {
@@ -175,12 +176,12 @@ TEST(ViewerOverlay, DrawsTheGlyphsInsideItsBox) {
       }
     }
   int dots = 0;
-  for (int r = 0; r < 7; ++r) dots += __builtin_popcount(glyph('1')[r]);
+  for (int r = 0; r < 7; ++r) dots += __builtin_popcount(scene::glyph('1')[r]);
   EXPECT_EQ(white, dots * 4);  // scale 2: four pixels per dot
   EXPECT_EQ(white + dark, box.width * box.height);
   EXPECT_EQ(untouched, w * h - box.width * box.height);
-  EXPECT_EQ(glyph('a'), glyph('A'));
-  EXPECT_EQ(glyph('~'), glyph('?'));
+  EXPECT_EQ(scene::glyph('a'), scene::glyph('A'));
+  EXPECT_EQ(scene::glyph('~'), scene::glyph('?'));
 }
 
 }  // namespace

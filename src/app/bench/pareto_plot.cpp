@@ -6,7 +6,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "app/view/overlay.h"
+#include "scene/bitmap_font.h"
 #include "scene/image.h"
 
 namespace sm::app::bench {
@@ -56,15 +56,7 @@ struct Canvas {
   }
   // Text in the 5x7 font (upper case), `scale` pixels per dot, top-left at (x, y).
   void text(int x, int y, const std::string& s, glm::vec4 c, int scale = 1) {
-    for (char ch : s) {
-      const uint8_t* g = view::glyph(ch);
-      for (int row = 0; row < 7; ++row)
-        for (int col = 0; col < 5; ++col)
-          if (g[row] & (1 << (4 - col)))
-            for (int dy = 0; dy < scale; ++dy)
-              for (int dx = 0; dx < scale; ++dx) set(x + col * scale + dx, y + row * scale + dy, c);
-      x += 6 * scale;
-    }
+    scene::drawText(s, x, y, scale, [&](int px, int py) { set(px, py, c); });
   }
 };
 

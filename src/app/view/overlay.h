@@ -1,6 +1,6 @@
-// The viewer's overlay: lines of text in a 5x7 bitmap font, drawn on the CPU into the 8-bit image
-// just before it is copied to the swapchain (it never reaches screenshots, which stay comparable
-// with `shellmarch render`). Letters show in upper case.
+// The viewer's overlay: lines of text in the 5x7 bitmap font (scene/bitmap_font.h), drawn on the
+// CPU into the 8-bit image just before it is copied to the swapchain (it never reaches screenshots,
+// which stay comparable with `shellmarch render`). Letters show in upper case.
 #pragma once
 
 #include <cstdint>
@@ -20,9 +20,5 @@ OverlayBox overlayBox(const std::vector<std::string>& lines, int scale);
 // the image.
 void drawOverlay(std::vector<uint8_t>& rgba, int width, int height,
                  const std::vector<std::string>& lines, int scale = 2);
-
-// The 7 rows of a character's 5-dot-wide glyph (bit 4 = leftmost); '?' for characters the font
-// lacks, lower case mapped to upper case.
-const uint8_t* glyph(char c);
 
 }  // namespace sm::view

@@ -1,0 +1,90 @@
+#include "scene/legend.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+
+#include "scene/bitmap_font.h"
+
+namespace sm::scene {
+namespace {
+
+std::string label(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// hi, middle, lo: top to bottom, as the bar runs.
+std::array<std::string, 3> labels(const TransferFunction& tf) {
+  return {label(tf.hi), label(0.5 * (tf.lo + tf.hi)), label(tf.lo)};
+}
+
+// The table's colour at x in [0, 1], interpolated as lookups are (whatever the range).
+glm::vec3 tableColor(const TransferFunction& tf, double x) {
+  if (tf.table.empty()) return glm::vec3(0.0f);
+  const double at = std::clamp(x, 0.0, 1.0) * double(tf.table.size() - 1);
+  const size_t i = std::min(size_t(at), tf.table.size() - 1),
+               j = std::min(i + 1, tf.table.size() - 1);
+  const double f = at - double(i);
+  return glm::vec3(glm::dvec3(tf.table[i]) * (1.0 - f) + glm::dvec3(tf.table[j]) * f);
+}
+
+}  // namespace
+
+LegendLayout legendLayout(int width, int height, const TransferFunction& tf,
+                          const std::string& title) {
+  LegendLayout l;
+  l.scale = height >= 900 ? 3 : height >= 360 ? 2 : 1;
+  const int s = l.scale, margin = 8 * s, gap = 3 * s;
+  int labelWidth = 0;
+  for (const std::string& t : labels(tf)) labelWidth = std::max(labelWidth, textWidth(t, s));
+  l.barWidth = 8 * s;
+  l.barHeight = std::max(2, height / 2);
+  // The frame is one dot wide around the bar; ticks reach `gap` to the right of it.
+  l.barX = width - margin - labelWidth - 2 * gap - l.barWidth - s;
+  l.barY = (height - l.barHeight) / 2 + (kGlyphHeight + 2) * s / 2;
+  const int titleY = l.barY - s - (kGlyphHeight + 3) * s;
+  const int titleX = std::min(l.barX - s, width - margin - textWidth(title, s));
+  l.left = std::min(l.barX - s, titleX);
+  l.top = titleY;
+  l.right = width - margin;
+  l.bottom = l.barY + l.barHeight + s + kGlyphHeight * s / 2 + 1;
+  return l;
+}
+
+void drawLegend(Image& img, const TransferFunction& tf, const std::string& title,
+                const glm::vec3& background) {
+  const LegendLayout l = legendLayout(img.width, img.height, tf, title);
+  const int s = l.scale, gap = 3 * s;
+  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
+  const glm::vec4 ink = luminance > 0.5f ? glm::vec4(0, 0, 0, 1) : glm::vec4(1, 1, 1, 1);
+  auto set = [&](int x, int y, const glm::vec4& c) {
+    if (x >= 0 && y >= 0 && x < img.width && y < img.height) img.at(x, y) = c;
+  };
+  for (int y = 0; y < l.barHeight; ++y) {
+    const double x01 = l.barHeight > 1 ? 1.0 - double(y) / double(l.barHeight - 1) : 0.5;
+    const glm::vec4 c(tableColor(tf, x01), 1.0f);
+    for (int x = 0; x < l.barWidth; ++x) set(l.barX + x, l.barY + y, c);
+  }
+  // Frame: s pixels around the bar.
+  for (int y = l.barY - s; y < l.barY + l.barHeight + s; ++y)
+    for (int x = l.barX - s; x < l.barX + l.barWidth + s; ++x) {
+      const bool inside =
+          x >= l.barX && x < l.barX + l.barWidth && y >= l.barY && y < l.barY + l.barHeight;
+      if (!inside) set(x, y, ink);
+    }
+  const auto text = labels(tf);
+  const int right = l.barX + l.barWidth + s;
+  for (int k = 0; k < 3; ++k) {
+    const int ty = l.barY + (l.barHeight - 1) * k / 2;  // hi, middle, lo
+    for (int x = right; x < right + gap; ++x)
+      for (int d = 0; d < s; ++d) set(x, ty + d - s / 2, ink);
+    drawText(text[size_t(k)], right + 2 * gap, ty - kGlyphHeight * s / 2, s,
+             [&](int x, int y) { set(x, y, ink); });
+  }
+  drawText(title, std::min(l.barX - s, l.right - textWidth(title, s)),
+           l.barY - s - (kGlyphHeight + 3) * s, s, [&](int x, int y) { set(x, y, ink); });
+}
+
+}  // namespace sm::scene

@@ -1,0 +1,31 @@
+// The colour legend (scalar bar) of `render --legend`, as ParaView and VisIt draw one beside a
+// volume: the colour map as a vertical bar at the right of the image, the field's name above it
+// and the range's ends and middle beside it, in the 5x7 bitmap font. Drawn opaque into the
+// composited image, so it reads the same over any background; text is white over a dark
+// background and black over a light one.
+#pragma once
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "scene/image.h"
+#include "scene/transfer_function.h"
+
+namespace sm::scene {
+
+struct LegendLayout {
+  int barX = 0, barY = 0, barWidth = 0, barHeight = 0;  // the colour bar, inside its frame
+  int left = 0, top = 0, right = 0, bottom = 0;  // everything drawn: [left, right) x [top, bottom)
+  int scale = 1;                                 // pixels per font dot
+};
+
+// Where drawLegend draws for a width x height image and these labels (clipped to the image).
+LegendLayout legendLayout(int width, int height, const TransferFunction& tf,
+                          const std::string& title);
+
+// Draws the legend of `tf` (its colours from lo at the bottom to hi at the top) titled `title`.
+void drawLegend(Image& img, const TransferFunction& tf, const std::string& title,
+                const glm::vec3& background);
+
+}  // namespace sm::scene

@@ -1,0 +1,119 @@
+// The colour legend of `render --legend`: it draws only inside its layout, its bar runs from the
+// colour map's first entry at the bottom to its last at the top, its ink follows the background,
+// and its labels move the bar to make room for them.
+#include <gtest/gtest.h>
+
+#include "scene/bitmap_font.h"
+#include "scene/legend.h"
+
+namespace sm::scene {
+namespace {
+
+const glm::vec4 kUntouched(0.25f, 0.5f, 0.75f, 0.5f);
+
+Image filled(int w, int h) {
+  Image img(w, h);
+  for (glm::vec4& p : img.pixels) p = kUntouched;
+  return img;
+}
+
+TransferFunction viridis(double lo, double hi) {
+  TransferFunction tf = makeTransferFunction("viridis");
+  tf.lo = lo;
+  tf.hi = hi;
+  return tf;
+}
+
+bool inside(const LegendLayout& l, int x, int y) {
+  return x >= l.left && x < l.right && y >= l.top && y < l.bottom;
+}
+
+TEST(Legend, DrawsOnlyInsideItsLayoutAndTheBarRunsLoToHi) {
+  const TransferFunction tf = viridis(-2.0, 3.0);
+  Image img = filled(320, 240);
+  drawLegend(img, tf, "pressure", glm::vec3(0.0f));
+  const LegendLayout l = legendLayout(img.width, img.height, tf, "pressure");
+  ASSERT_GT(l.barWidth, 0);
+  ASSERT_GT(l.barHeight, 1);
+  EXPECT_GE(l.left, img.width / 2);  // at the right, clear of most of the view
+  EXPECT_LE(l.right, img.width);
+  int changed = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      if (img.at(x, y) == kUntouched) continue;
+      ++changed;
+      EXPECT_TRUE(inside(l, x, y)) << x << "," << y;
+      EXPECT_EQ(img.at(x, y).a, 1.0f) << x << "," << y;  // opaque: reads the same on any background
+    }
+  EXPECT_GT(changed, l.barWidth * l.barHeight);  // the bar, its frame and the text
+  const int cx = l.barX + l.barWidth / 2;
+  const glm::vec4 top = img.at(cx, l.barY), bottom = img.at(cx, l.barY + l.barHeight - 1);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(top[c], tf.table.back()[c], 1e-6);
+    EXPECT_NEAR(bottom[c], tf.table.front()[c], 1e-6);
+  }
+  // The middle row shows the middle of the map, as a lookup of the range's middle does.
+  const glm::dvec4 mid = tf.lookup(0.5);
+  const glm::vec4 m = img.at(cx, l.barY + (l.barHeight - 1) / 2);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], mid[c], 0.02);
+}
+
+TEST(Legend, InkIsWhiteOnDarkAndBlackOnLight) {
+  const TransferFunction tf = viridis(0.0, 1.0);
+  Image dark = filled(256, 192), light = filled(256, 192);
+  drawLegend(dark, tf, "t", glm::vec3(0.1f, 0.1f, 0.12f));
+  drawLegend(light, tf, "t", glm::vec3(1.0f));
+  int ink = 0;
+  for (size_t i = 0; i < dark.pixels.size(); ++i) {
+    if (dark.pixels[i] == glm::vec4(1.0f)) {
+      ++ink;
+      EXPECT_EQ(light.pixels[i], glm::vec4(0, 0, 0, 1));
+    } else {
+      EXPECT_EQ(light.pixels[i], dark.pixels[i]);  // the bar and the untouched image agree
+    }
+  }
+  // The title's dots at least, besides the frame, ticks and labels.
+  int titleDots = 0;
+  for (int r = 0; r < kGlyphHeight; ++r) titleDots += __builtin_popcount(glyph('T')[r]);
+  EXPECT_GT(ink, titleDots);
+}
+
+TEST(Legend, WiderLabelsMoveTheBarLeftAndLargeImagesScaleTheFont) {
+  const LegendLayout narrow = legendLayout(512, 384, viridis(0.0, 1.0), "p");
+  const LegendLayout wide = legendLayout(512, 384, viridis(-123456.0, 98765.4), "p");
+  EXPECT_LT(wide.barX, narrow.barX);
+  EXPECT_EQ(wide.right, narrow.right);
+  EXPECT_EQ(legendLayout(256, 192, viridis(0, 1), "p").scale, 1);
+  EXPECT_EQ(narrow.scale, 2);
+  EXPECT_EQ(legendLayout(1024, 1024, viridis(0, 1), "p").scale, 3);
+}
+
+TEST(Legend, ATinyImageIsClippedNotOverrun) {
+  const TransferFunction tf = viridis(0.0, 1.0);
+  Image img = filled(24, 16);  // smaller than the legend itself
+  drawLegend(img, tf, "a long field name", glm::vec3(0.0f));
+  EXPECT_EQ(img.pixels.size(), size_t(24 * 16));
+  int changed = 0;
+  for (const glm::vec4& p : img.pixels) changed += p != kUntouched;
+  EXPECT_GT(changed, 0);
+}
+
+TEST(BitmapFont, TextWidthAndDotsFollowTheGlyphs) {
+  EXPECT_EQ(textWidth("", 2), 0);
+  EXPECT_EQ(textWidth("A", 1), kGlyphWidth);
+  EXPECT_EQ(textWidth("AB", 2), (2 * kGlyphAdvance - 1) * 2);
+  int dots = 0, expected = 0;
+  drawText("1.", 10, 20, 3, [&](int x, int y) {
+    ++dots;
+    EXPECT_GE(x, 10);
+    EXPECT_LT(x, 10 + textWidth("1.", 3));
+    EXPECT_GE(y, 20);
+    EXPECT_LT(y, 20 + kGlyphHeight * 3);
+  });
+  for (char c : {'1', '.'})
+    for (int r = 0; r < kGlyphHeight; ++r) expected += __builtin_popcount(glyph(c)[r]);
+  EXPECT_EQ(dots, expected * 9);
+}
+
+}  // namespace
+}  // namespace sm::scene
