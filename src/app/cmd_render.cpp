@@ -38,9 +38,6 @@ void registerRender(CLI::App& app) {
       "--repeat", job->repeat,
       "Render the step sequence R times and report fps over the runs (images are written "
       "once)");
-  cmd->add_flag("--legend", job->legend,
-                "Draw the colour legend (the colour map with the field's name and range) at the "
-                "right of the image");
   cmd->add_option("--orbit", job->orbit,
                   "Turn the camera 360/N degrees about its up axis through the point looked at "
                   "each frame: with one time step, N frames (one turn) as a numbered image "

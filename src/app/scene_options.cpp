@@ -52,6 +52,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--early-termination", job.earlyTermination,
                   "Stop rays at this opacity (default 0.99)");
   cmd->add_option("--background", t["--background"], "Background colour r,g,b in [0,1]");
+  cmd->add_flag("--legend", job.legend,
+                "Draw the colour legend (the colour map with the field's name and range) at the "
+                "right of the image");
   cmd->add_option("--clusters", t["--clusters"], "Split into N clusters with METIS");
   cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids")
       ->check(nonEmptyName());

@@ -150,8 +150,8 @@ TEST(ViewerInput, HeldKeysRepeatOnlyWhenTheyStep) {
   for (Key k : {Key::NextStep, Key::PrevStep, Key::MoreOpaque, Key::LessOpaque, Key::NextField,
                 Key::NextColormap, Key::FinerStep, Key::CoarserStep})
     EXPECT_TRUE(keyRepeats(k)) << int(k);
-  for (Key k : {Key::TogglePlay, Key::ToggleOverlay, Key::Screenshot, Key::Help, Key::Quit,
-                Key::ResetView, Key::None})
+  for (Key k : {Key::TogglePlay, Key::ToggleOverlay, Key::ToggleLegend, Key::Screenshot, Key::Help,
+                Key::Quit, Key::ResetView, Key::None})
     EXPECT_FALSE(keyRepeats(k)) << int(k);
 }
 

@@ -268,6 +268,54 @@ TEST(ViewerHeadless, FpsHoldsEachPlayedStep) {
   EXPECT_EQ(j["time"], 0);  // steps 0 1 2 0
 }
 
+// --legend draws the colour legend into what the viewer shows and saves, as `render --legend`
+// draws it (the report's render arguments carry the flag); the l key takes it away again.
+TEST(ViewerHeadless, LegendIsRendersLegendAndTheKeyTogglesIt) {
+  const std::string dir = outputDir("ViewerHeadless.Legend");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
+                           quote(mesh) +
+                           " --field vortex --size 160x120 --headless --print-camera ";
+  const std::string with = dir + "/with.png";
+  CommandResult r =
+      runCommand(view + "--legend --frames 1 --screenshot " + quote(with), dir, "with");
+  expectCleanRun(r);
+  nlohmann::json j = lastJson(r.out);
+  EXPECT_EQ(j["legend"], true);
+  const scene::Image shown = expectMatchesRender(dir, mesh, j, with, "with-render");
+  // The legend is there: the screenshot differs from the same view without it, at the right only.
+  const std::string plain = dir + "/plain.png";
+  nlohmann::json noLegend = j;
+  auto& a = noLegend["render_args"];
+  const auto flag = std::find(a.begin(), a.end(), "--legend");
+  ASSERT_NE(flag, a.end()) << j.dump();
+  a.erase(flag);
+  r = runCommand(
+      shellmarch() + " render " + quote(mesh) + renderArgs(noLegend) + " --out " + quote(plain),
+      dir, "plain");
+  expectCleanRun(r);
+  const scene::Image without = scene::readPng(plain);
+  ASSERT_EQ(without.pixels.size(), shown.pixels.size());
+  int differ = 0, leftmost = shown.width;
+  for (int y = 0; y < shown.height; ++y)
+    for (int x = 0; x < shown.width; ++x)
+      if (shown.at(x, y) != without.at(x, y)) {
+        ++differ;
+        leftmost = std::min(leftmost, x);
+      }
+  EXPECT_GT(differ, 200);
+  EXPECT_GE(leftmost, shown.width / 2);
+
+  const std::string off = dir + "/off.png";
+  const std::string script = writeFile(dir, "off.txt", "frame\nkey l\nframe\nquit\n");
+  r = runCommand(view + "--legend --script " + quote(script) + " --screenshot " + quote(off), dir,
+                 "off");
+  expectCleanRun(r);
+  j = lastJson(r.out);
+  EXPECT_EQ(j["legend"], false);
+  expectMatchesRender(dir, mesh, j, off, "off-render");
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

@@ -19,7 +19,8 @@ Key keyFromName(const std::string& name) {
       {"up", Key::MoreOpaque},  {"down", Key::LessOpaque},  {"f", Key::NextField},
       {"c", Key::NextColormap}, {"[", Key::FinerStep},      {"]", Key::CoarserStep},
       {"r", Key::ResetView},    {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
-      {"h", Key::Help},         {"q", Key::Quit},           {"escape", Key::Quit}};
+      {"l", Key::ToggleLegend}, {"h", Key::Help},           {"q", Key::Quit},
+      {"escape", Key::Quit}};
   auto it = keys.find(name);
   return it == keys.end() ? Key::None : it->second;
 }
@@ -54,6 +55,7 @@ std::string controlsHelp() {
          "  r                             reset the view\n"
          "  s                             screenshot (PNG, without the overlay)\n"
          "  o                             overlay on / off\n"
+         "  l                             colour legend on / off (in screenshots too)\n"
          "  h                             print these controls (on stderr)\n"
          "  q, escape                     quit\n";
 }
@@ -155,6 +157,9 @@ void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& l
       break;
     case Key::ToggleOverlay:
       local.toggleOverlay = true;
+      break;
+    case Key::ToggleLegend:
+      local.toggleLegend = true;
       break;
     case Key::Help:
       local.help = true;

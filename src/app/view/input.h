@@ -25,6 +25,7 @@ enum class Key {
   ResetView,      // r
   Screenshot,     // s
   ToggleOverlay,  // o
+  ToggleLegend,   // l
   Help,           // h
   Quit,           // q, escape
 };
@@ -51,6 +52,7 @@ std::string controlsHelp();
 struct LocalRequests {
   std::vector<std::string> screenshots;  // "" = the next numbered name
   bool toggleOverlay = false;
+  bool toggleLegend = false;
   bool help = false;
   int resizeWidth = 0, resizeHeight = 0;  // > 0: ask the window for this size
 };

@@ -21,6 +21,7 @@
 #include "common/log.h"
 #include "common/timer.h"
 #include "scene/image.h"
+#include "scene/legend.h"
 
 namespace sm::view {
 namespace {
@@ -81,6 +82,7 @@ class Viewer {
   uint32_t framesShown_ = 0;
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
+  bool legend_ = false;  // drawn into the image, so into screenshots too (render --legend's)
   // --fps: when the step shown last changed, the time spent holding steps back, and the shortest
   // time a step was shown while playing (rank 0).
   using Clock = std::chrono::steady_clock;
@@ -90,7 +92,7 @@ class Viewer {
 };
 
 Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll)
-    : job_(job), options_(options), coll_(coll), overlay_(options.overlay) {
+    : job_(job), options_(options), coll_(coll), overlay_(options.overlay), legend_(job.legend) {
   if (options.frames < 0) throw Error("--frames: ", options.frames, " is negative");
   if (!(options.fps >= 0) || !std::isfinite(options.fps))
     throw Error("--fps: ", options.fps, " is not a positive number of steps a second");
@@ -199,9 +201,10 @@ void Viewer::applyEvents(std::vector<InputEvent>& events) {
   events.clear();
   if (local_.resizeWidth > 0) window_->requestSize(local_.resizeWidth, local_.resizeHeight);
   if (local_.toggleOverlay) overlay_ = !overlay_;
+  if (local_.toggleLegend) legend_ = !legend_;
   if (local_.help) std::fputs(controlsHelp().c_str(), stderr);
   local_.resizeWidth = local_.resizeHeight = 0;
-  local_.toggleOverlay = local_.help = false;
+  local_.toggleOverlay = local_.toggleLegend = local_.help = false;
 }
 
 void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
@@ -211,6 +214,15 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
   lastHeight_ = state_.height;
   uint64_t covered = 0;
   for (const glm::vec4& p : lastPixels_) covered += p.a > 0.0f;
+  if (legend_) {
+    scene::Image img;
+    img.width = lastWidth_;
+    img.height = lastHeight_;
+    img.pixels = std::move(lastPixels_);
+    scene::drawLegend(img, scene_->settings().transferFunction, scene_->field().name,
+                      job_.background);
+    lastPixels_ = std::move(img.pixels);
+  }
   fragmentsPerPixel_ = covered ? double(fragments) / double(covered) : 0.0;
   presenter_->show(lastPixels_, lastWidth_, lastHeight_,
                    overlay_ ? overlayLines() : std::vector<std::string>{});
@@ -299,6 +311,8 @@ nlohmann::json Viewer::report(uint64_t errors) const {
                       "--opacity-scale=" + fmt("%.17g", state_.opacityScale),
                       "--step=" + fmt("%.17g", state_.dt),
                       "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
+  if (legend_) j["render_args"].push_back("--legend");
+  j["legend"] = legend_;
   return j;
 }
 

@@ -53,6 +53,8 @@ Key keyOf(int key) {
       return Key::Screenshot;
     case GLFW_KEY_O:
       return Key::ToggleOverlay;
+    case GLFW_KEY_L:
+      return Key::ToggleLegend;
     case GLFW_KEY_H:
       return Key::Help;
     case GLFW_KEY_Q:
