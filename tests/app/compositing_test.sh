@@ -6,8 +6,7 @@ set -euo pipefail
 case_name=$1 sm=$2 diff=$3 refcheck=$4 work=$5 nested=${6:-}
 mkdir -p "$work"
 cd "$work"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
+source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 
 # One camera and transfer function for every image, so that the CPU reference can redo them.
 W=96 H=72 STEP=0.06 UNIT=2.5 LO=0 HI=1 CMAP=cool-to-warm

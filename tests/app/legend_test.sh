@@ -8,9 +8,7 @@ sm=$1 diff=$2 work=$3
 mkdir -p "$work"
 cd "$work"
 rm -f ./*.pfm ./*.png
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 
 "$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 5 --steps 2 --out steps.pvtu
 view=(--field vortex --size 160x120 --range 0,1 --colormap viridis --view iso --background 0,0,0)

@@ -9,9 +9,7 @@ sm=$1 work=$2
 mkdir -p "$work"
 cd "$work"
 rm -rf ./*
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 
 view=(--field vortex --size 48x40 --view iso --range 0,1 --colormap viridis --early-termination 1)
 "$sm" generate --analytic cube-tets6 --cube-n 5 --clusters 3 --steps 3 --out steps.pvtu

@@ -10,13 +10,7 @@ sm=$1 diff=$2 refcheck=$3 work=$4
 mkdir -p "$work"
 cd "$work"
 rm -f ./*.pfm ./*.json ./*.log
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
-fail() { echo "FAIL: $*"; exit 1; }
-json() {  # json FILE PYTHON-EXPRESSION-ON-j: fails unless true
-  python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
-    fail "$1: $2"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 # Frame k's eye as the statistics wrote it (every digit: the same double on the command line).
 eye() { python3 -c "import json,sys; print(','.join(repr(v) for v in json.load(open(sys.argv[1]))['frames'][int(sys.argv[2])]['eye']))" "$1" "$2"; }
 

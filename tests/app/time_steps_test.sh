@@ -9,9 +9,7 @@ sm=$1 diff=$2 refcheck=$3 work=$4
 mkdir -p "$work"
 cd "$work"
 rm -f ./*.pfm ./*.json
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi() { local n=$1; shift; mpiexec -n "$n" --oversubscribe "$@"; }
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 
 W=64 H=48 STEP=0.02 UNIT=0.3 LO=0 HI=1 CMAP=viridis
 EYE=2.2,-1.6,1.4 AT=0.5,0.5,0.5 UP=0,0,1 FOVY=35
@@ -27,11 +25,6 @@ for k in 0 1 2 3; do
     ${UP//,/ } $FOVY 0.0039 $k
 done
 "$diff" single_0.pfm single_3.pfm --min-max-abs 0.05
-
-json() {  # json FILE PYTHON-EXPRESSION-ON-j: fails unless true
-  python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1" ||
-    fail "$1: $2"
-}
 
 for n in 1 3; do
   mpi $n "$sm" render steps.pvtu "${view[@]}" --time all --stats --stats-json seq$n.json \
