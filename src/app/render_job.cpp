@@ -78,8 +78,8 @@ std::vector<FramePlan> planFrames(const RenderJob& job, const std::vector<uint64
       // The angle from the frame index, not accumulated: the turn closes on the first frame.
       c = scene::turnAbout(s.camera,
                            2.0 * std::numbers::pi * double(i % size_t(job.orbit)) / job.orbit);
-      render::checkStep(s.dt, c.eye,
-                        whole);  // the step must hold from every eye, as from the first
+      // The step must hold from every eye, as makeSettings checked it from the first.
+      render::checkStep(s.dt, c.eye, whole);
     }
     const uint64_t step = steps[turntable ? 0 : i];
     plan.push_back({step, c, turntable ? uint64_t(i) : step});
