@@ -14,5 +14,5 @@ if [ ! -f demo/capsule.pvtu ]; then
 fi
 # The bow shock, shock layer and wake of the capsule (the "density" field), looking from upstream.
 ./build/src/app/shellmarch render demo/capsule.pvtu --field density --size 768x576 --eye -6,-9,4.5 --at 2.5,0,0 \
-  --fovy 32 --colormap inferno --range 1.5,6 --opacity-scale 2 --out demo/demo.png --stats
+  --fovy 32 --colormap inferno --range 1.5,6 --opacity-scale 2 --legend --out demo/demo.png --stats
 echo "demo: wrote $PWD/demo/demo.png"
