@@ -40,7 +40,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
 
   void setMesh(const MeshView& view);
   void setCellField(const std::string& name, std::span<const float> values);
-  Image render(const RenderSettings& settings);
+  void render(const RenderSettings& settings, Image& into);
   MeshFrame agreeOnFrame(const sm::mesh::UnstructuredMesh& m);
   void upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds);
   void ensureRenderer(int width, int height);
@@ -153,7 +153,7 @@ void Renderer::Impl::ensureRenderer(int width, int height) {
   renderer = std::make_unique<sm::render::Renderer>(*ctx, *scene, *compositor);
 }
 
-Image Renderer::Impl::render(const RenderSettings& s) {
+void Renderer::Impl::render(const RenderSettings& s, Image& into) {
   sm::Timer timer;
   sm::render::RenderSettings rs;
   sm::insitu::FieldRange range;
@@ -173,15 +173,15 @@ Image Renderer::Impl::render(const RenderSettings& s) {
   sm::render::FrameResult result;
   group.runOrAbort([&] { result = renderer->render(rs, std::move(pixels)); });
   frameMs = timer.seconds() * 1e3;
-  Image img;
   if (group.rank() == 0) {
-    img.width = s.width;
-    img.height = s.height;
-    img.rgba.resize(result.pixels.size() * 4);
-    std::memcpy(img.rgba.data(), result.pixels.data(), img.rgba.size() * sizeof(float));
+    into.width = s.width;
+    into.height = s.height;
+    into.rgba.resize(result.pixels.size() * 4);  // within its capacity from the second frame on
+    std::memcpy(into.rgba.data(), result.pixels.data(), into.rgba.size() * sizeof(float));
+  } else {
+    into = Image{};
   }
   pixels = std::move(result.pixels);
-  return img;
 }
 
 namespace {
@@ -229,7 +229,13 @@ void Renderer::setCellField(const std::string& name, std::span<const float> valu
 }
 
 Image Renderer::render(const RenderSettings& settings) {
-  return translated([&] { return impl_->render(settings); });
+  Image img;
+  render(settings, img);
+  return img;
+}
+
+void Renderer::render(const RenderSettings& settings, Image& into) {
+  translated([&] { impl_->render(settings, into); });
 }
 
 Stats Renderer::stats() const {

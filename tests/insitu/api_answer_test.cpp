@@ -218,5 +218,36 @@ TEST_F(InsituApi, TimeStepsUploadScalarsOnly) {
   EXPECT_EQ(vis_->stats().geometryBuilds, before.geometryBuilds);  // none since setMesh
 }
 
+// Rendering into an image reuses its storage, frame after frame, and gives what render returns.
+TEST_F(InsituApi, RenderIntoReusesTheImage) {
+  SimMesh sim = simMesh(sm::test::hexGrid(3));
+  vis_->setMesh(sim.view());
+  vis_->setField("p", std::vector<float>(sim.vertices(), 0.6f));
+  api::RenderSettings s;
+  s.width = 24;
+  s.height = 16;
+  s.camera = api::Camera{{1.9, 2.3, 2.7}, {0.5, 0.5, 0.5}, {0, 0, 1}, 40};
+  s.range = {0.0, 1.0};
+  api::Image into;
+  vis_->render(s, into);
+  ASSERT_EQ(into.width, 24);
+  ASSERT_EQ(into.height, 16);
+  ASSERT_EQ(into.rgba.size(), size_t(24 * 16 * 4));
+  const float* storage = into.rgba.data();
+  vis_->setField("p", std::vector<float>(sim.vertices(), 0.3f));
+  vis_->render(s, into);
+  EXPECT_EQ(into.rgba.data(), storage);  // no new allocation
+  const api::Image returned = vis_->render(s);
+  EXPECT_EQ(returned.rgba, into.rgba);
+  float covered = 0;
+  for (size_t i = 3; i < into.rgba.size(); i += 4) covered += into.rgba[i];
+  EXPECT_GT(covered, 0.0f);
+  // A smaller frame fits in the same storage.
+  s.width = 12;
+  vis_->render(s, into);
+  EXPECT_EQ(into.rgba.data(), storage);
+  EXPECT_EQ(into.rgba.size(), size_t(12 * 16 * 4));
+}
+
 }  // namespace
 }  // namespace sm::insitu::test

@@ -190,6 +190,10 @@ class SHELLMARCH_INSITU_API Renderer {
   void setCellField(const std::string& name, std::span<const float> values);
   // Collective. Renders and composites; the image on rank 0, an empty image elsewhere.
   Image render(const RenderSettings& settings);
+  // The same into `into`, whose storage is reused: a simulation that renders every step allocates
+  // its image once (a 3840 x 2160 frame is 127 MiB of floats), not once a frame. Rank 0 only;
+  // `into` is emptied elsewhere.
+  void render(const RenderSettings& settings, Image& into);
 
   Stats stats() const;
 
