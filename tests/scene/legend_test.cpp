@@ -3,6 +3,9 @@
 // and its labels move the bar to make room for them.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+
 #include "scene/bitmap_font.h"
 #include "scene/legend.h"
 
@@ -56,6 +59,25 @@ TEST(Legend, DrawsOnlyInsideItsLayoutAndTheBarRunsLoToHi) {
   const glm::dvec4 mid = tf.lookup(0.5);
   const glm::vec4 m = img.at(cx, l.barY + (l.barHeight - 1) / 2);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c], mid[c], 0.02);
+}
+
+// At every font scale, and with long labels and title, nothing lands outside the layout.
+TEST(Legend, EveryScaleStaysInsideItsLayout) {
+  for (auto [w, h] : {std::pair{320, 240}, {640, 480}, {1200, 1000}}) {
+    const TransferFunction tf = viridis(-1.25e-7, 98765.4321);
+    const std::string title = "turbulent kinetic energy";
+    Image img = filled(w, h);
+    drawLegend(img, tf, title, glm::vec3(1.0f));
+    const LegendLayout l = legendLayout(w, h, tf, title);
+    int changed = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (img.at(x, y) != kUntouched) {
+          ++changed;
+          EXPECT_TRUE(inside(l, x, y)) << w << "x" << h << ": " << x << "," << y;
+        }
+    EXPECT_GT(changed, l.barWidth * l.barHeight) << w << "x" << h;
+  }
 }
 
 TEST(Legend, InkIsWhiteOnDarkAndBlackOnLight) {
