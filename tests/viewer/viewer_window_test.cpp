@@ -191,14 +191,20 @@ TEST(ViewerHeadless, StepsAreReadFromTheFileWhenShown) {
   EXPECT_EQ(ranged.err, want);
 }
 
+// `shellmarch view MESH --field vortex --size WxH --headless --print-camera `, without a display:
+// the start of every headless session below.
+std::string headlessView(const std::string& mesh, const char* size) {
+  return "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " + quote(mesh) +
+         " --field vortex --size " + size + " --headless --print-camera ";
+}
+
 // Playing shows a step a frame, each read and uploaded on a thread while the frame before
 // renders; a step the user skips while it is read ahead is dropped, its read error with it
 // (step 2 of the test series is corrupt), and a step shown is read or fails as before.
 TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
   const std::string dir = outputDir("ViewerHeadless.Play");
   const std::string mesh = generateTestMesh(dir);
-  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
-                           quote(mesh) + " --field vortex --size 32x24 --headless --print-camera ";
+  const std::string view = headlessView(mesh, "32x24");
   // Steps 0 1 2 0 1: four of the five frames find their step read ahead.
   const std::string played = dir + "/played.png";
   CommandResult r =
@@ -240,8 +246,7 @@ TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
 TEST(ViewerHeadless, FpsHoldsEachPlayedStep) {
   const std::string dir = outputDir("ViewerHeadless.Fps");
   const std::string mesh = generateTestMesh(dir);
-  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
-                           quote(mesh) + " --field vortex --size 32x24 --headless --print-camera ";
+  const std::string view = headlessView(mesh, "32x24");
   CommandResult r = runCommand(view + "--play --frames 5 --fps 4", dir, "capped");
   expectCleanRun(r);
   nlohmann::json j = lastJson(r.out);
@@ -273,9 +278,7 @@ TEST(ViewerHeadless, FpsHoldsEachPlayedStep) {
 TEST(ViewerHeadless, LegendIsRendersLegendAndTheKeyTogglesIt) {
   const std::string dir = outputDir("ViewerHeadless.Legend");
   const std::string mesh = generateTestMesh(dir);
-  const std::string view = "env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
-                           quote(mesh) +
-                           " --field vortex --size 160x120 --headless --print-camera ";
+  const std::string view = headlessView(mesh, "160x120");
   const std::string with = dir + "/with.png";
   CommandResult r =
       runCommand(view + "--legend --frames 1 --screenshot " + quote(with), dir, "with");

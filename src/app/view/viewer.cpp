@@ -243,7 +243,9 @@ std::vector<std::string> Viewer::overlayLines() const {
                   fmt(" (RENDER %.1f MS)", renderMs_));
   lines.push_back(fmt("%.2f FRAGMENTS/PIXEL", fragmentsPerPixel_));
   lines.push_back(f.name + " STEP " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
-                  (state_.playing ? " PLAYING  " : "  ") +
+                  (!state_.playing    ? std::string("  ")
+                   : options_.fps > 0 ? fmt(" PLAYING MAX %g/S  ", options_.fps)
+                                      : std::string(" PLAYING  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
   return lines;
