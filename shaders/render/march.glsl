@@ -213,7 +213,8 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
       vec3 guess = parametricCenter(type);  // Newton starts at each element's centre
       if (t > a) integrateElement(fr, fp, type, g, tetGrad, w.tIn, t, w.sIn, s, a, t, guess, r.color, r.samples, kNext, tfc);
       r.tEnd = t;
-      if (r.color.a >= fp.earlyTermination || ref == SM_NO_NEIGHBOR) {
+      // Past the clip planes' span nothing more is sampled: the walk stops as if it left the volume.
+      if (r.color.a >= fp.earlyTermination || ref == SM_NO_NEIGHBOR || (kClip && t >= fr.clipHi)) {
         r.status = MARCH_OK;
         return r;
       }

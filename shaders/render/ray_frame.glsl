@@ -15,11 +15,19 @@
 
 layout(constant_id = 10) const bool kHasFloat64 = false;
 
+// Pipelines for frames with clip planes (FrameParams::clipPlanes); without, the clip code is
+// compiled out and costs nothing.
+layout(constant_id = 14) const bool kClip = false;
+
 struct RayFrame {
   vec3 org;
   vec3 dir;
   uint kx, ky, kz;
   float sx, sy, sz;
+  // kClip: the ray's samples are those of [clipLo, clipHi), grid indices [kClipLo, kClipHi)
+  // (segment.glsl, clipRay).
+  float clipLo, clipHi;
+  uint kClipLo, kClipHi;
 };
 
 RayFrame makeRayFrame(vec3 org, vec3 dir) {
@@ -38,6 +46,10 @@ RayFrame makeRayFrame(vec3 org, vec3 dir) {
   f.sx = dir[f.kx] / dir[f.kz];
   f.sy = dir[f.ky] / dir[f.kz];
   f.sz = 1.0 / dir[f.kz];
+  f.clipLo = 0.0;
+  f.clipHi = 3.0e38;
+  f.kClipLo = 0u;
+  f.kClipHi = 0xFFFFFFFFu;
   return f;
 }
 

@@ -43,6 +43,10 @@ uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool
   float tBoxIn = box.x, tBox = box.y;
   // A ray that misses the box misses the volume: no query for it.
   if (tBox < tBoxIn - kSamePlace * abs(tBoxIn)) return 0u;
+  // Nor does one whose clip span is empty or outside the box.
+  if (kClip && (!(fr.clipHi > fr.clipLo) || fr.clipHi < tBoxIn - kSamePlace * abs(tBoxIn) ||
+                fr.clipLo > tBox + kSamePlace * abs(tBox)))
+    return 0u;
   // The next entry is most often where the ray enters the box (a far field fills its box) or
   // where the last segment ended (clusters side by side): probe there first (nextCrossing), a
   // thousandth of the box's depth on, far more than float rounding of either.
@@ -70,6 +74,7 @@ uint traceRay(RayFrame fr, FrameParams fp, uint pixel, uint cap, uint sink, bool
       transmittance *= 1.0 - frag.color.a;
       if (1.0 - transmittance >= fp.earlyTermination) break;
     }
+    if (kClip && prevEnd >= fr.clipHi) break;  // the rest of the ray is clipped away
     if (pastBox(prevEnd, tBox)) {
       st.boxExits += 1u;
       break;

@@ -97,14 +97,39 @@ uvec2 tiledPixel() {
   return gl_WorkGroupID.xy * 8u + uvec2(x, y);
 }
 
+// The part of the ray that the frame's clip planes keep (scene::clipSpan, in float): [clipLo,
+// clipHi) and the grid samples in it. An empty span has clipHi <= clipLo and no samples.
+RayFrame clipRay(RayFrame fr, FrameParams fp) {
+  float lo = 0.0, hi = 3.0e38;
+  for (uint i = 0u; i < fp.clipCount; ++i) {
+    vec4 p = fp.clipPlanes[i];
+    float side = dot(p.xyz, fr.org) + p.w, rate = dot(p.xyz, fr.dir);
+    if (rate == 0.0) {
+      if (!(side >= 0.0)) hi = -1.0;
+      continue;
+    }
+    float t = -side / rate;
+    if (rate > 0.0) lo = max(lo, t);
+    else hi = min(hi, t);
+  }
+  fr.clipLo = lo;
+  fr.clipHi = hi;
+  fr.kClipLo = firstSample(lo, fp.dt);
+  fr.kClipHi = hi > lo ? firstSample(hi, fp.dt) : fr.kClipLo;
+  return fr;
+}
+
 RayFrame pixelRay(FrameParams fp, uvec2 px) {
+  RayFrame fr;
   if (fp.rays != 0ul) {
     RayDesc r = SmRays(fp.rays).v[px.y * fp.width + px.x];
-    return makeRayFrame(r.origin, r.direction);
+    fr = makeRayFrame(r.origin, r.direction);
+  } else {
+    float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.tanHalfFovy * fp.aspect;
+    float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.tanHalfFovy;
+    fr = makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));
   }
-  float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.tanHalfFovy * fp.aspect;
-  float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.tanHalfFovy;
-  return makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));
+  return kClip ? clipRay(fr, fp) : fr;
 }
 
 #endif

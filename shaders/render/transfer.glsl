@@ -269,6 +269,11 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
   }
   float cosine;
   if (kElementExact) {
+    if (kClip) {  // the clip planes' part of the piece, integrated as a whole piece is
+      a = max(a, fr.clipLo);
+      b = min(b, fr.clipHi);
+      if (!(b > a)) return;
+    }
     uint m = type == SM_TET ? 1u : clamp(uint(ceil((b - a) / dt)), kMinPieces, kMaxPieces);
     float tPrev = a, sPrev = 0.0;
     SM_NO_UNROLL for (uint i = 0u; i <= m; ++i) {
@@ -288,6 +293,11 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
   }
   uint k = kNext != kNoSample ? kNext : firstSample(a, dt);
   uint kEnd = max(firstSample(b, dt), k);
+  kNext = kEnd;
+  if (kClip) {  // the samples the clip planes keep (the grid and the walk's bookkeeping stay)
+    k = max(k, fr.kClipLo);
+    kEnd = max(min(kEnd, fr.kClipHi), k);
+  }
   // One trip count for the SIMD batch (the most samples any of its lanes takes in its element), and
   // a lane with fewer computes samples at b that it drops: the mask inside the loop stays the walk's
   // instead of one that changes with each lane's count, which keeps the transfer function's reads
@@ -318,7 +328,6 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
       guess = kept;
     }
   }
-  kNext = kEnd;
 }
 
 #endif

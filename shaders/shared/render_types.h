@@ -14,6 +14,9 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 #endif
 
+// Clip planes a frame can carry (scene::kMaxClipPlanes, checked where they are written).
+SM_CONST uint SM_MAX_CLIP_PLANES = 6u;
+
 // Where one rank's prepared data lives on the device (buffer device addresses).
 struct SceneRefs {
   uint64_t vertices;        // vec4 per vertex: xyz rebased, w the current field and step's scalar
@@ -76,6 +79,11 @@ struct FrameParams {
   float shadeDiffuse;
   float shadeSpecular;
   float shadeShininess;
+  // Clip planes (pipelines specialised with kClip only): each keeps dot(xyz, x) + w >= 0 for x
+  // rebased, xyz a unit normal; a ray samples only the t that every plane keeps.
+  uint clipCount;
+  uint pad1, pad2, pad3;
+  vec4 clipPlanes[SM_MAX_CLIP_PLANES];
 };
 
 // An explicit ray (rebased origin, unit direction), for tests that aim rays at vertices and edges.
@@ -110,12 +118,12 @@ struct RenderStats {
   uint stepLimitHits;  // marches stopped by maxElementSteps
   uint segments;
   uint fragments;
-  uint overflow;      // fragments dropped or merged by fixed-length lists
-  uint elementSteps;  // elements visited: low 32 bits (elementStepCount)
-  uint samples;       // samples taken: low 32 bits (sampleCount)
-  uint cameraInside;  // rays whose first segment starts at the camera
-  uint boxExits;      // rays whose traversal ended where a segment left the rank's bounding box
-  uint shellQueries;  // acceleration-structure queries (a probe that finds nothing is one more)
+  uint overflow;       // fragments dropped or merged by fixed-length lists
+  uint elementSteps;   // elements visited: low 32 bits (elementStepCount)
+  uint samples;        // samples taken: low 32 bits (sampleCount)
+  uint cameraInside;   // rays whose first segment starts at the camera
+  uint boxExits;       // rays whose traversal ended where a segment left the rank's bounding box
+  uint shellQueries;   // acceleration-structure queries (a probe that finds nothing is one more)
   uint cacheRetraces;  // cached two-pass lists: pixels with more segments than cache slots,
                        // traced again in the store pass
   // High words of elementSteps and samples, which pass 2^32 on large images (a 4096² demo frame
@@ -127,7 +135,8 @@ struct RenderStats {
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 13 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 22 * 4, "FrameParams layout");
+static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 26 * 4 + SM_MAX_CLIP_PLANES * 16,
+              "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");
 static_assert(sizeof(CachedSegment) == 40, "CachedSegment layout");
@@ -135,7 +144,9 @@ static_assert(sizeof(RenderStats) == 60, "RenderStats layout");
 inline uint64_t elementStepCount(const RenderStats& s) {
   return uint64_t(s.elementStepsHigh) << 32 | s.elementSteps;
 }
-inline uint64_t sampleCount(const RenderStats& s) { return uint64_t(s.samplesHigh) << 32 | s.samples; }
+inline uint64_t sampleCount(const RenderStats& s) {
+  return uint64_t(s.samplesHigh) << 32 | s.samples;
+}
 }  // namespace sm::gpu
 #endif
 

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
@@ -54,6 +55,40 @@ std::pair<double, double> parseRange(const std::string& option, const std::strin
   if (!(std::abs(v[0]) <= 3.4e38 && std::abs(v[1]) <= 3.4e38))
     throw Error(option, ": '", value, "' must lie within float range (+-3.4e38)");
   return {v[0], v[1]};
+}
+
+scene::ClipPlane parseClipPlane(const std::string& option, const std::string& value) {
+  const size_t cmp = value.find_first_of("<>");
+  if (cmp != std::string::npos) {
+    const std::string axis = value.substr(0, cmp), at = value.substr(cmp + 1);
+    if (axis.size() != 1 || axis.find_first_of("xyz") != 0)
+      throw Error(option, ": '", value, "' is not AXIS>VALUE or AXIS<VALUE with AXIS x, y or z");
+    const int a = axis[0] - 'x';
+    scene::ClipPlane p;
+    p.normal = glm::dvec3(0.0);
+    p.normal[a] = value[cmp] == '>' ? 1.0 : -1.0;
+    p.point = glm::dvec3(0.0);
+    p.point[a] = numbers(option, at, ',', 1)[0];
+    return p;
+  }
+  auto v = numbers(option, value, ',', 6);
+  scene::ClipPlane p{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+  if (p.normal == glm::dvec3(0.0))
+    throw Error(option, ": '", value,
+                "' has a zero normal (PX,PY,PZ,NX,NY,NZ keeps the side N points to)");
+  scene::checkClipPlanes(std::span(&p, 1), option);
+  return p;
+}
+
+std::string formatClipPlane(const scene::ClipPlane& plane) {
+  std::string out;
+  for (double d : {plane.point.x, plane.point.y, plane.point.z, plane.normal.x, plane.normal.y,
+                   plane.normal.z}) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", d);
+    out += (out.empty() ? "" : ",") + std::string(buf);
+  }
+  return out;
 }
 
 render::Shading parseShading(const std::string& option, const std::string& value) {

@@ -26,6 +26,11 @@ comp::Encoding parseEncoding(const std::string& value);                // float 
 comp::PixelOwnership parsePixelOwnership(const std::string& value);    // interleaved | ranges
 comp::CompositeMethod parseCompositeMethod(const std::string& value);  // deep | single
 render::Integration parseIntegration(const std::string& value);        // sampled | exact
+// "px,py,pz,nx,ny,nz" (the plane through p keeping the side n points into) or "AXIS>V" / "AXIS<V"
+// (x, y or z: the side of the plane AXIS = V where the coordinate is greater or less than V).
+scene::ClipPlane parseClipPlane(const std::string& option, const std::string& value);
+// The 6-number form of a plane, with enough digits to read back the same doubles.
+std::string formatClipPlane(const scene::ClipPlane& plane);
 render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
 
 }  // namespace sm::app

@@ -39,6 +39,7 @@ struct RenderJob {
   comp::CompositeMethod composite = comp::CompositeMethod::Deep;
   render::Integration integration = render::Integration::Sampled;
   render::Shading shading;
+  std::vector<scene::ClipPlane> clipPlanes;  // --clip
   bool allTypePipelines = false;
   std::string l2Heatmap;   // also composite single-fragment; write the L2 difference heatmap here
   std::string heatmaps;    // prefix: fragment-count heatmaps per rank and combined (PNG)

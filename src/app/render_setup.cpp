@@ -91,6 +91,7 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.earlyTermination = job.earlyTermination;
   s.integration = job.integration;
   s.shading = job.shading;
+  s.clipPlanes = job.clipPlanes;
   s.allTypePipelines = job.allTypePipelines;
   if (!(s.transferFunction.unitDistance > 0)) throw Error("--unit-distance must be positive");
   if (!(job.opacityScale >= 0)) throw Error("--opacity-scale must not be negative");

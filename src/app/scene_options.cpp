@@ -55,6 +55,10 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_flag("--legend", job.legend,
                 "Draw the colour legend (the colour map with the field's name and range) at the "
                 "right of the image");
+  cmd->add_option("--clip", raw.clip,
+                  "Clip plane PX,PY,PZ,NX,NY,NZ (keeps the side the normal N points to) or "
+                  "AXIS>V / AXIS<V (e.g. x>0.5); repeat for up to 6 planes")
+      ->allow_extra_args(false);
   cmd->add_option("--clusters", t["--clusters"], "Split into N clusters with METIS");
   cmd->add_option("--cluster-array", job.share.read.clusterArray, "Cell array holding cluster ids")
       ->check(nonEmptyName());
@@ -92,6 +96,9 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.shading = parseShading("--shading-params", get("--shading-params"));
   if (raw.shading) job.shading.enabled = true;
   job.compact = !raw.plain;
+  job.clipPlanes.clear();
+  for (const std::string& c : raw.clip) job.clipPlanes.push_back(parseClipPlane("--clip", c));
+  scene::checkClipPlanes(job.clipPlanes, "--clip");
   // Options that another one makes meaningless are refused rather than silently ignored.
   if (!get("--view").empty()) {
     if (job.eye)

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -14,6 +15,7 @@ namespace sm::app {
 
 struct SceneOptionText {
   std::map<std::string, std::string> text;  // option name -> value as given
+  std::vector<std::string> clip;            // --clip, once per plane
   bool plain = false;
   bool shading = false;
 };

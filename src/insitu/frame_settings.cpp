@@ -101,6 +101,10 @@ render::RenderSettings toRenderSettings(const api::RenderSettings& s, const Mesh
   // Here, with the whole mesh's bounds, so that every rank refuses it alike (an agreed error).
   render::checkStep(r.dt, r.camera.eye, frame.whole, "render: sampleDistance");
   r.earlyTermination = s.earlyTermination;
+  for (const api::ClipPlane& c : s.clipPlanes)
+    r.clipPlanes.push_back(
+        {{c.point[0], c.point[1], c.point[2]}, {c.normal[0], c.normal[1], c.normal[2]}});
+  scene::checkClipPlanes(r.clipPlanes, "render: clipPlanes");
   return r;
 }
 
@@ -113,6 +117,8 @@ uint64_t settingsDigest(const api::RenderSettings& s) {
   h.pod(s.range.has_value());
   if (s.range) h.pod(*s.range);
   h.pod(s.opacityScale).pod(s.unitDistance).pod(s.sampleDistance).pod(s.earlyTermination);
+  h.pod(s.clipPlanes.size());
+  for (const api::ClipPlane& c : s.clipPlanes) h.pod(c.point).pod(c.normal);
   return h.digest();
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <glm/common.hpp>
 
@@ -46,6 +47,16 @@ RayIntegrator::RayIntegrator(const ReferenceRenderer& renderer, const glm::dvec3
 
 void RayIntegrator::integrate(std::span<const Crossing> crossings, Accumulator& acc,
                               PixelStats& stats) const {
+  std::vector<Crossing> clipped;
+  if (!settings_.clipPlanes.empty()) {
+    const scene::ClipSpan span = scene::clipSpan(settings_.clipPlanes, origin_, dir_);
+    for (Crossing c : crossings) {
+      c.tIn = std::max(c.tIn, span.lo);
+      c.tOut = std::min(c.tOut, span.hi);
+      if (c.tOut > c.tIn) clipped.push_back(c);
+    }
+    crossings = clipped;
+  }
   if (settings_.mode == RenderMode::Grid) {
     grid(crossings, acc, stats);
   } else {

@@ -28,6 +28,8 @@
 //    failing at depth 20 are counted in PixelStats::unconverged. Points covered by overlapping
 //    elements count once.
 //  - Early termination at `earlyTermination` (default 1.0: off, the oracle's answer).
+//  - Clip planes (scene/clip_plane.h): each crossing is cut to the ray's clip span [lo, hi) before
+//    integration, so Grid mode keeps the samples with lo <= t_k < hi.
 // Precision: all geometry and integration in double; the image stores float. The converged
 // error is an estimate, not a bound (on the tests' scenes, tolerance 1e-6 lands within 3e-7 of
 // a 1e-9 solution). Degenerate cases: rays through vertices, along edges or in the plane of a
@@ -47,6 +49,7 @@
 #include "mesh/unstructured_mesh.h"
 #include "ref/bvh.h"
 #include "scene/camera.h"
+#include "scene/clip_plane.h"
 #include "scene/image.h"
 #include "scene/transfer_function.h"
 
@@ -79,10 +82,11 @@ enum class RenderMode { Grid, Converged };
 struct RenderSettings {
   double dt = 0.0;  // sample spacing in world units (Grid mode); must be positive
   RenderMode mode = RenderMode::Grid;
-  double earlyTermination = 1.0;  // stop once opacity reaches this; 1 = never stop early
-  ElementPredicate filter;        // render only these elements (empty: all)
-  double tolerance = 1e-6;        // Converged mode: target error per pixel channel
-  unsigned threads = 0;           // 0 = all cores
+  double earlyTermination = 1.0;             // stop once opacity reaches this; 1 = never stop early
+  ElementPredicate filter;                   // render only these elements (empty: all)
+  std::vector<scene::ClipPlane> clipPlanes;  // draw only what every plane keeps
+  double tolerance = 1e-6;                   // Converged mode: target error per pixel channel
+  unsigned threads = 0;                      // 0 = all cores
 };
 
 // A segment's contribution: premultiplied colour, opacity, and its entry distance.

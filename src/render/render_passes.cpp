@@ -36,6 +36,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
           {11, scene.shellGeometry() == ShellGeometry::Boxes ? 1u : 0u},
           {12, options.elementExact ? 1u : 0u},
           {13, options.shading ? 1u : 0u},
+          {14, options.clip ? 1u : 0u},
           {100, compositor.modeConstant()},
           {101, compositor.encodingConstant()}};
 }

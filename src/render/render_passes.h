@@ -19,8 +19,11 @@ struct PassOptions {
   bool elementExact = false;
   bool shading = false;
   bool allTypes = false;  // benchmarks: as if every element type were present (no type folding)
-  static constexpr int kCombinations = 8;
-  int index() const { return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0); }
+  bool clip = false;      // the frame has clip planes
+  static constexpr int kCombinations = 16;
+  int index() const {
+    return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0) + (clip ? 8 : 0);
+  }
 };
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,

@@ -2,9 +2,11 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "compositor/deep_compositor.h"
 #include "scene/camera.h"
+#include "scene/clip_plane.h"
 #include "scene/transfer_function.h"
 
 namespace sm::render {
@@ -29,6 +31,8 @@ struct RenderSettings {
   double dt = 0.01;  // sample spacing along rays, world units
   Integration integration = Integration::Sampled;
   Shading shading;
+  // Up to scene::kMaxClipPlanes planes; each keeps the half-space its normal points into.
+  std::vector<scene::ClipPlane> clipPlanes;
   // Benchmarks only: pipelines specialised for every element type, whatever the scene holds, to
   // measure what specialisation saves.
   bool allTypePipelines = false;

@@ -150,6 +150,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.shadeSpecular = float(sh.specular);
     p.shadeShininess = float(sh.shininess);
   }
+  setClipPlanes(s.clipPlanes, p);
   p.maxElementSteps = s.maxElementSteps;
   p.maxSegments = s.maxSegments;
   comp::DeviceLists lists = compositor_.lists();
@@ -171,6 +172,21 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.piHi = float(t.hi);
   }
   return p;
+}
+
+void Renderer::setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const {
+  static_assert(scene::kMaxClipPlanes == int(gpu::SM_MAX_CLIP_PLANES));
+  scene::checkClipPlanes(planes, "clip planes");
+  p.clipCount = uint32_t(planes.size());
+  for (size_t i = 0; i < planes.size(); ++i) {
+    // Device coordinates are rebased and uniformly scaled: the normal keeps its direction, the
+    // offset is the rebased point's.
+    const glm::dvec3 n = glm::normalize(planes[i].normal);
+    const double w = -glm::dot(n, scene_.toDevice(planes[i].point));
+    if (!(std::abs(w) < 1e30))
+      throw Error("clip plane ", i + 1, ": its point is beyond the renderer's float range");
+    p.clipPlanes[i] = glm::vec4(glm::vec3(n), float(w));
+  }
 }
 
 void Renderer::writeParams(const gpu::FrameParams& p) {
@@ -208,7 +224,7 @@ FrameResult Renderer::render(const RenderSettings& s, std::vector<glm::vec4> reu
   transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
   if (s.integration == Integration::ElementExact) updatePreintegration(s);
   passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled,
-                             s.allTypePipelines};
+                             s.allTypePipelines, !s.clipPlanes.empty()};
   gpu::FrameParams p = frameParams(s);
   FrameResult out;
   const gpu::RenderStats zero{};

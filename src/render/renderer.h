@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -77,6 +78,8 @@ class Renderer {
   bool ensureSegmentCache(uint64_t bytes);
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
   void writeParams(const gpu::FrameParams& p);
+  // Checks the planes and writes them, in device coordinates, into p.
+  void setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const;
 
   const vk::Context& ctx_;
   const GpuScene& scene_;

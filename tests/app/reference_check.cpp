@@ -2,10 +2,13 @@
 // [max-rmse]
 //                 [time-step]
 // Renders MESH with the double-precision CPU reference (Grid mode: the same samples as the GPU),
+// clipped by the planes of REFERENCE_CHECK_CLIP if set,
 // composites over black like `render --background 0,0,0`, and compares with IMAGE.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
 
 #include "io/mesh_io.h"
 #include "prep/prepare.h"
@@ -24,7 +27,8 @@ int main(int argc, char** argv) {
     mesh::UnstructuredMesh input = io::readMesh(argv[1]);
     // The GPU splits quads through their smallest vertex in the global (position) order: give the
     // reference the same numbering so that warped quads are triangulated alike.
-    std::vector<uint32_t> order = prep::globalVertexOrder(input.points, prep::makeGlobalFrame(input.bounds()));
+    std::vector<uint32_t> order =
+        prep::globalVertexOrder(input.points, prep::makeGlobalFrame(input.bounds()));
     std::vector<uint32_t> newId(order.size());
     for (size_t i = 0; i < order.size(); ++i) newId[order[i]] = uint32_t(i);
     mesh::UnstructuredMesh m = input;
@@ -49,16 +53,32 @@ int main(int argc, char** argv) {
     double maxRmse = argc > 21 ? std::atof(argv[21]) : 1.0 / 255.0;
     ref::RenderSettings rs;
     rs.dt = std::atof(argv[6]);
+    // Clip planes from REFERENCE_CHECK_CLIP="px,py,pz,nx,ny,nz[;...]", as `render --clip` takes
+    // them.
+    if (const char* clip = std::getenv("REFERENCE_CHECK_CLIP")) {
+      std::string planes = clip;
+      for (size_t at = 0; at < planes.size();) {
+        size_t end = std::min(planes.find(';', at), planes.size());
+        scene::ClipPlane p;
+        if (std::sscanf(planes.substr(at, end - at).c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &p.point.x,
+                        &p.point.y, &p.point.z, &p.normal.x, &p.normal.y, &p.normal.z) != 6)
+          throw std::runtime_error("REFERENCE_CHECK_CLIP: '" + planes +
+                                   "' is not PX,PY,PZ,NX,NY,NZ[;...]");
+        rs.clipPlanes.push_back(p);
+        at = end + 1;
+      }
+    }
     ref::ReferenceRenderer r(m);
     scene::Image want = r.render(cam, w, h, values, tf, rs).image;
     for (auto& p : want.pixels) p = glm::vec4(glm::vec3(p), 1.0f);  // over black, as the PFM stores
     scene::Image got = scene::readPfm(argv[3]);
     scene::ImageError e = scene::compareImages(want, got);
-    std::printf("GPU image vs CPU reference: RMSE %.3g (limit %.3g), max abs %.3g, PSNR %.1f dB\n", e.rmse, maxRmse,
-                e.maxAbs, e.psnr);
+    std::printf("GPU image vs CPU reference: RMSE %.3g (limit %.3g), max abs %.3g, PSNR %.1f dB\n",
+                e.rmse, maxRmse, e.maxAbs, e.psnr);
     if (e.rmse > maxRmse || e.nanPixels) {
       scene::writePngRgba(std::string(argv[3]) + ".reference.png", want);
-      scene::writePngRgba(std::string(argv[3]) + ".difference.png", scene::differenceImage(want, got, 10.0f));
+      scene::writePngRgba(std::string(argv[3]) + ".difference.png",
+                          scene::differenceImage(want, got, 10.0f));
       return 1;
     }
     return 0;

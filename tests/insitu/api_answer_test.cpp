@@ -96,6 +96,42 @@ TEST_F(InsituApi, SlabKnownAnswerFromACellField) {
   expectSlab(*vis_, sm::test::pyramidGrid(2), "pyramids", Given::PerElement);
 }
 
+// Clip planes through the API: the slab cut at x = 0.6 (keeping x <= 0.6) and z = 0.3 (keeping
+// z >= 0.3) has the opacity of the box [0, 0.6] x [0, 1] x [0.3, 1].
+TEST_F(InsituApi, ClipPlanesCutTheSlab) {
+  SimMesh sim = simMesh(sm::test::kuhnTetGrid(3));
+  vis_->setMesh(sim.view());
+  vis_->setField("density", std::vector<float>(sim.vertices(), 0.5f));
+  const double sigma = 1.3;
+  api::RenderSettings s;
+  s.width = s.height = 40;
+  s.camera = api::Camera{{1.9, 2.3, 2.7}, {0.5, 0.5, 0.5}, {0, 0, 1}, 40};
+  s.table = {{0.2f, 0.6f, 1.0f, 1.0f}, {0.2f, 0.6f, 1.0f, 1.0f}};
+  s.range = {0.0, 1.0};
+  s.unitDistance = 1.0 / sigma;
+  s.sampleDistance = 0.01;
+  s.earlyTermination = 2.0;
+  s.clipPlanes = {{{0.6, 0, 0}, {-2, 0, 0}}, {{0, 0, 0.3}, {0, 0, 1}}};
+  api::Image img = vis_->render(s);
+  const scene::CameraFrame cam = frameOf(s);
+  double maxErr = 0;
+  int covered = 0, cut = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::dvec3 d = cam.pixelDirection(x, y);
+      double t0, t1, c0, c1;
+      rayBox(cam.eye, d, 0.0, 1.0, t0, t1);
+      sm::test::rayBox(cam.eye, d, {0, 0, 0.3}, {0.6, 1, 1}, c0, c1);
+      const double L = c1 > c0 ? c1 - c0 : 0.0;
+      covered += L > 0;
+      cut += t1 > t0 && L == 0;
+      maxErr = std::max(maxErr, std::abs(alphaAt(img, x, y) - (1.0 - std::exp(-sigma * L))));
+    }
+  EXPECT_GT(covered, s.width * s.height / 8);
+  EXPECT_GT(cut, s.width * s.height / 8);
+  EXPECT_LT(maxErr, sigma * s.sampleDistance + 1e-4);
+}
+
 // A cell field becomes, at each vertex, the mean of the elements that use it (computed here
 // independently, in the caller's shuffled vertex order), and renders as that vertex field does.
 TEST_F(InsituApi, CellFieldIsTheMeanOfTheElementsAtEachVertex) {

@@ -172,6 +172,13 @@ TEST_F(InsituErrors, Settings) {
   expectSettingError([](auto& s) { s.colormap = "no-such-map"; },
                      "render: colormap: unknown colour map 'no-such-map' (built-in: ");
   expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); }, "must be finite");
+  expectSettingError(
+      [](auto& s) {
+        s.clipPlanes = {{{0, 0, 0}, {0, 0, 0}}};
+      },
+      "render: clipPlanes: clip plane 1 has a zero normal");
+  expectSettingError([](auto& s) { s.clipPlanes.resize(7); },
+                     "render: clipPlanes: 7 clip planes, at most 6");
   // Finer than float positions along the rays resolve (the sample index could wrap).
   expectSettingError([](auto& s) { s.sampleDistance = 1e-12; },
                      "render: sampleDistance: 1e-12 is finer than float distances");

@@ -112,6 +112,7 @@ scene::Image renderReference(const mesh::UnstructuredMesh& input,
   rs.dt = s.dt;
   rs.mode = ref::RenderMode::Grid;
   rs.earlyTermination = std::min(s.earlyTermination, 1.0);
+  rs.clipPlanes = s.clipPlanes;
   return r.render(s.camera, s.width, s.height, values, s.transferFunction, rs).image;
 }
 

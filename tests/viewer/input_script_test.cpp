@@ -144,14 +144,50 @@ TEST(ViewerInput, KeysChangeStepFieldColormapOpacitySamplingAndPlay) {
   EXPECT_EQ(s.quit, 1u);
 }
 
+// The cut (x): a plane through the point looked at, facing away from the camera, fixed in the
+// world once made; . and , move it farther and nearer by a fiftieth of the home distance; shift+x
+// keeps the near half instead; no cut while the job's --clip planes leave no room for one.
+TEST(ViewerInput, TheCutKeysPlaceAndMoveAClipPlane) {
+  InputHandler h(startState().camera(), choices());
+  LocalRequests local;
+  ViewState s = startState();
+  play("key .\n", h, s, local);  // no cut yet: nothing to move
+  EXPECT_EQ(s.cut, 0u);
+  play("key x\n", h, s, local);
+  ASSERT_EQ(s.cut, 1u);
+  EXPECT_EQ(s.cutPoint, s.at);
+  const glm::dvec3 away = glm::normalize(s.at - s.eye);
+  EXPECT_NEAR(glm::distance(s.cutNormal, away), 0.0, 1e-12);
+  const double step = InputHandler::kCutStepFraction * glm::length(s.eye - s.at);
+  play("key .\nkey .\nkey ,\n", h, s, local);
+  EXPECT_NEAR(glm::distance(s.cutPoint, s.at + step * away), 0.0, 1e-12);
+  const glm::dvec3 placed = s.cutPoint, normal = s.cutNormal;
+  play("drag left 40 0\n", h, s, local);  // orbiting leaves the cut where it is
+  EXPECT_EQ(s.cutPoint, placed);
+  EXPECT_EQ(s.cutNormal, normal);
+  play("key x\n", h, s, local);
+  EXPECT_EQ(s.cut, 0u);
+  play("key x shift\nkey .\n", h, s, local);  // the near half kept; . still moves it away
+  const glm::dvec3 view = glm::normalize(s.at - s.eye);
+  EXPECT_NEAR(glm::dot(s.cutNormal, view), -1.0, 1e-12);
+  EXPECT_NEAR(glm::distance(s.cutPoint, s.at + step * view), 0.0, 1e-12);
+  ViewChoices full = choices();
+  full.cutAvailable = false;
+  InputHandler none(startState().camera(), full);
+  ViewState t = startState();
+  play("key x\n", none, t, local);
+  EXPECT_EQ(t.cut, 0u);
+}
+
 // Held down, a stepping key steps again with each auto-repeat; space would toggle play on and
 // off, so toggles act once per press.
 TEST(ViewerInput, HeldKeysRepeatOnlyWhenTheyStep) {
-  for (Key k : {Key::NextStep, Key::PrevStep, Key::MoreOpaque, Key::LessOpaque, Key::NextField,
-                Key::NextColormap, Key::FinerStep, Key::CoarserStep})
+  for (Key k :
+       {Key::NextStep, Key::PrevStep, Key::MoreOpaque, Key::LessOpaque, Key::NextField,
+        Key::NextColormap, Key::FinerStep, Key::CoarserStep, Key::CutNearer, Key::CutFarther})
     EXPECT_TRUE(keyRepeats(k)) << int(k);
   for (Key k : {Key::TogglePlay, Key::ToggleOverlay, Key::ToggleLegend, Key::Screenshot, Key::Help,
-                Key::Quit, Key::ResetView, Key::None})
+                Key::Quit, Key::ResetView, Key::ToggleCut, Key::None})
     EXPECT_FALSE(keyRepeats(k)) << int(k);
 }
 

@@ -319,6 +319,45 @@ TEST(ViewerHeadless, LegendIsRendersLegendAndTheKeyTogglesIt) {
   expectMatchesRender(dir, mesh, j, off, "off-render");
 }
 
+// The cut (x, then . to move it): the report's render arguments carry it as --clip, and render
+// with them draws the screenshot; it cuts something away; x again removes it.
+TEST(ViewerHeadless, TheCutKeyClipsAsRenderDoes) {
+  const std::string dir = outputDir("ViewerHeadless.Cut");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = headlessView(mesh, "96x72");
+  const std::string cut = dir + "/cut.png", plain = dir + "/plain.png", off = dir + "/off.png";
+  CommandResult r = runCommand(view + "--script " +
+                                   quote(writeFile(dir, "cut.txt", "key x\nkey .\nframe\nquit\n")) +
+                                   " --screenshot " + quote(cut),
+                               dir, "cut");
+  expectCleanRun(r);
+  nlohmann::json j = lastJson(r.out);
+  ASSERT_FALSE(j["cut"].is_null()) << j.dump();
+  const auto& args = j["render_args"];
+  EXPECT_EQ(std::count_if(args.begin(), args.end(),
+                          [](const nlohmann::json& a) {
+                            return a.get<std::string>().rfind("--clip=", 0) == 0;
+                          }),
+            1)
+      << j.dump();
+  const scene::Image shown = expectMatchesRender(dir, mesh, j, cut, "cut-render");
+  r = runCommand(view + "--frames 1 --screenshot " + quote(plain), dir, "plain");
+  expectCleanRun(r);
+  const scene::Image uncut = scene::readPng(plain);
+  ASSERT_EQ(uncut.pixels.size(), shown.pixels.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < shown.pixels.size(); ++i) differ += shown.pixels[i] != uncut.pixels[i];
+  EXPECT_GT(differ, shown.pixels.size() / 10);
+  r = runCommand(view + "--script " +
+                     quote(writeFile(dir, "off.txt", "key x\nframe\nkey x\nframe\nquit\n")) +
+                     " --screenshot " + quote(off),
+                 dir, "off");
+  expectCleanRun(r);
+  j = lastJson(r.out);
+  EXPECT_TRUE(j["cut"].is_null()) << j.dump();
+  EXPECT_EQ(scene::compareImages(uncut, scene::readPng(off)).maxAbs, 0.0);
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include <glm/geometric.hpp>
+
 namespace sm::view {
 namespace {
 
@@ -20,6 +22,7 @@ Key keyFromName(const std::string& name) {
       {"c", Key::NextColormap}, {"[", Key::FinerStep},      {"]", Key::CoarserStep},
       {"r", Key::ResetView},    {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
       {"l", Key::ToggleLegend}, {"h", Key::Help},           {"q", Key::Quit},
+      {"x", Key::ToggleCut},    {",", Key::CutNearer},      {".", Key::CutFarther},
       {"escape", Key::Quit}};
   auto it = keys.find(name);
   return it == keys.end() ? Key::None : it->second;
@@ -35,6 +38,8 @@ bool keyRepeats(Key key) {
     case Key::NextColormap:
     case Key::FinerStep:
     case Key::CoarserStep:
+    case Key::CutNearer:
+    case Key::CutFarther:
       return true;
     default:
       return false;
@@ -56,12 +61,17 @@ std::string controlsHelp() {
          "  s                             screenshot (PNG, without the overlay)\n"
          "  o                             overlay on / off\n"
          "  l                             colour legend on / off (in screenshots too)\n"
+         "  x / shift+x                   cut away the near / far half: a clip plane through the\n"
+         "                                point looked at, facing the camera; again: no cut\n"
+         "  , / .                         move the cut nearer / farther\n"
          "  h                             print these controls (on stderr)\n"
          "  q, escape                     quit\n";
 }
 
 InputHandler::InputHandler(const scene::Camera& home, const ViewChoices& choices)
-    : controller_(home), choices_(choices) {}
+    : controller_(home),
+      cutStep_(kCutStepFraction * glm::length(home.eye - home.at)),
+      choices_(choices) {}
 
 void InputHandler::apply(const InputEvent& e, ViewState& state, LocalRequests& local) {
   controller_.setCamera(state.camera());
@@ -164,12 +174,37 @@ void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& l
     case Key::Help:
       local.help = true;
       break;
+    case Key::ToggleCut:
+    case Key::CutNearer:
+    case Key::CutFarther:
+      onCutKey(e, state);
+      break;
     case Key::Quit:
       state.quit = 1;
       break;
     case Key::None:
       break;
   }
+}
+
+// The cut is fixed in the world once made (orbit round it to see the cut face); made again, it
+// faces the camera anew. The normal points away from the camera, so the half between the camera
+// and the point looked at is cut away; shift keeps that half instead.
+void InputHandler::onCutKey(const InputEvent& e, ViewState& state) const {
+  if (!choices_.cutAvailable) return;
+  if (e.key == Key::ToggleCut) {
+    state.cut = !state.cut;
+    if (state.cut) {
+      state.cutPoint = state.at;
+      state.cutNormal = glm::normalize(state.at - state.eye) * (e.shift ? -1.0 : 1.0);
+    }
+    return;
+  }
+  if (!state.cut) return;
+  const double along =
+      glm::dot(state.cutNormal, glm::normalize(state.at - state.eye)) >= 0 ? 1 : -1;
+  // Farther from the camera whichever side the cut keeps.
+  state.cutPoint += (e.key == Key::CutFarther ? 1.0 : -1.0) * along * cutStep_ * state.cutNormal;
 }
 
 }  // namespace sm::view

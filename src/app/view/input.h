@@ -26,6 +26,9 @@ enum class Key {
   Screenshot,     // s
   ToggleOverlay,  // o
   ToggleLegend,   // l
+  ToggleCut,      // x (shift: keep the other side)
+  CutNearer,      // ,
+  CutFarther,     // .
   Help,           // h
   Quit,           // q, escape
 };
@@ -68,13 +71,17 @@ class InputHandler {
 
   static constexpr double kOpacityFactor = 1.25;
   static constexpr double kStepFactor = 1.25;
+  // The cut moves by this fraction of the home camera's distance to the data's centre per press.
+  static constexpr double kCutStepFraction = 0.02;
 
  private:
   void onMove(double x, double y, ViewState& state);
   void onKey(const InputEvent& e, ViewState& state, LocalRequests& local);
+  void onCutKey(const InputEvent& e, ViewState& state) const;
   enum class Drag { None, Orbit, Pan, Zoom };
   CameraController controller_;
-  ViewChoices choices_;  // a copy: only its sizes matter here
+  double cutStep_;       // world distance per cut key press
+  ViewChoices choices_;  // a copy: only its sizes and cutAvailable matter here
   Drag drag_ = Drag::None;
   Button dragButton_ = Button::Left;
   double cursorX_ = 0, cursorY_ = 0;

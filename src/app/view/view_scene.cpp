@@ -77,6 +77,7 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   loadSeconds_ = load.seconds();
   choices_.fields = agreedFieldNames(share_.mesh, app::resolveField(job, share_.mesh, coll), coll);
   choices_.colormaps = colormapChoices(job.colormap);
+  choices_.cutAvailable = job.clipPlanes.size() < size_t(scene::kMaxClipPlanes);
   fields_.resize(choices_.fields.size());
   selectField(0);
   settings_ = app::makeSettings(job, share_, field_.range);
@@ -178,6 +179,8 @@ void ViewScene::applyState(ViewState& state) {
   }
   settings_.transferFunction.opacityScale = state.opacityScale;
   settings_.camera = state.camera();
+  settings_.clipPlanes = job_.clipPlanes;
+  if (state.cut) settings_.clipPlanes.push_back(state.cutPlane());
   // "Finer step" stops at a hundredth of the starting step, and zooming far out at the finest
   // step that float positions along a ray resolve (render::checkStep).
   state.dt = std::max({state.dt, finestInteractiveStep_,

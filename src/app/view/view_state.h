@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "scene/camera.h"
+#include "scene/clip_plane.h"
 
 namespace sm::view {
 
@@ -27,6 +28,12 @@ struct ViewState {
   uint32_t playing = 0;  // 1: each frame shows the next step (rank 0 advances it)
   uint32_t frame = 0;    // frames rendered before this one
   uint32_t quit = 0;     // 1: no frame; every rank leaves the loop
+  // The view cut (x key): a clip plane through cutPoint keeping the side cutNormal points to, on
+  // top of the job's --clip planes.
+  uint32_t cut = 0;
+  glm::dvec3 cutPoint{0, 0, 0}, cutNormal{0, 0, 1};
+
+  scene::ClipPlane cutPlane() const { return {cutPoint, cutNormal}; }
 
   scene::Camera camera() const { return {eye, at, up, fovyDeg}; }
   void setCamera(const scene::Camera& c) {
@@ -42,6 +49,7 @@ static_assert(std::is_trivially_copyable_v<ViewState>, "broadcast as bytes");
 struct ViewChoices {
   std::vector<std::string> fields;
   std::vector<std::string> colormaps;  // the job's --colormap first, then the other built-ins
+  bool cutAvailable = true;            // false when the job's --clip planes leave no room
 };
 
 }  // namespace sm::view

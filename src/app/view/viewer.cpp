@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cli_parsers.h"
 #include "app/render_setup.h"
 #include "app/view/input.h"
 #include "app/view/presenter.h"
@@ -248,6 +249,13 @@ std::vector<std::string> Viewer::overlayLines() const {
                                       : std::string(" PLAYING  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
+  if (state_.cut) {
+    const auto short3 = [](const glm::dvec3& v, const char* f) {
+      return fmt(f, v.x) + "," + fmt(f, v.y) + "," + fmt(f, v.z);
+    };
+    lines.push_back("CUT AT " + short3(state_.cutPoint, "%.3g") + " KEEPS " +
+                    short3(state_.cutNormal, "%.2f"));
+  }
   return lines;
 }
 
@@ -315,6 +323,14 @@ nlohmann::json Viewer::report(uint64_t errors) const {
                       "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
   if (legend_) j["render_args"].push_back("--legend");
   j["legend"] = legend_;
+  // Every plane the frame was clipped by: the view's --clip planes and the cut.
+  for (const scene::ClipPlane& p : scene_->settings().clipPlanes)
+    j["render_args"].push_back("--clip=" + app::formatClipPlane(p));
+  j["cut"] =
+      state_.cut
+          ? nlohmann::json{{"point", {state_.cutPoint.x, state_.cutPoint.y, state_.cutPoint.z}},
+                           {"normal", {state_.cutNormal.x, state_.cutNormal.y, state_.cutNormal.z}}}
+          : nlohmann::json(nullptr);
   return j;
 }
 

@@ -57,6 +57,12 @@ Key keyOf(int key) {
       return Key::ToggleLegend;
     case GLFW_KEY_H:
       return Key::Help;
+    case GLFW_KEY_X:
+      return Key::ToggleCut;
+    case GLFW_KEY_COMMA:
+      return Key::CutNearer;
+    case GLFW_KEY_PERIOD:
+      return Key::CutFarther;
     case GLFW_KEY_Q:
     case GLFW_KEY_ESCAPE:
       return Key::Quit;

@@ -113,6 +113,11 @@ struct Camera {
   double fovyDeg = 30.0;  // vertical field of view
 };
 
+// Keeps the half-space the normal points into, dot(x - point, normal) >= 0 (VTK's convention).
+struct ClipPlane {
+  std::array<double, 3> point{0, 0, 0}, normal{0, 0, 1};
+};
+
 // Per frame. Every rank must pass the same settings.
 struct RenderSettings {
   int width = 512, height = 512;
@@ -128,6 +133,7 @@ struct RenderSettings {
   double unitDistance = 0;         // opacity 1 means optical depth 1 over this; <= 0: diagonal / 8
   double sampleDistance = 0;       // between samples along a ray; <= 0: half the mean element size
   double earlyTermination = 0.99;  // a ray stops once this opaque; >= 1 never stops early
+  std::vector<ClipPlane> clipPlanes;  // up to 6: only what every plane keeps is drawn
 };
 
 // Premultiplied RGBA, 4 floats per pixel, row 0 at the top. Empty on ranks other than 0.
