@@ -48,6 +48,12 @@ class Communicator {
                        std::span<const uint64_t> recvBytes, std::span<const uint64_t> recvOffsets,
                        int root) = 0;
   virtual void broadcast(void* data, uint64_t bytes, int root) = 0;
+  // broadcast for ranks that may wait long for root (an interactive viewer's state while rank 0
+  // waits for input or paces play): they sleep between polls instead of keeping a core busy, as
+  // a blocking MPI broadcast does. Every rank of the group must call this one, not broadcast.
+  virtual void broadcastPatiently(void* data, uint64_t bytes, int root) {
+    broadcast(data, bytes, root);
+  }
   // Ends all ranks with `message` (printed with this rank's number). Does not return.
   [[noreturn]] virtual void abort(const std::string& message) = 0;
 };

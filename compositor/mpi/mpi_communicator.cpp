@@ -228,6 +228,26 @@ void MpiCommunicator::broadcast(void* data, uint64_t bytes, int root) {
   }
 }
 
+void MpiCommunicator::broadcastPatiently(void* data, uint64_t bytes, int root) {
+  for (uint64_t done = 0; done < bytes; done += maxBytes_) {
+    int n = int(std::min(maxBytes_, bytes - done));
+    MPI_Request request;
+    mpiCheck(MPI_Ibcast(static_cast<uint8_t*>(data) + done, n, MPI_BYTE, root, comm_, &request),
+             "MPI_Ibcast");
+    // A few quick polls first (a frame's state usually arrives at once), then sleeps doubling to
+    // a millisecond: at most a millisecond late, and an idle rank costs no core.
+    std::chrono::microseconds pause(10);
+    for (int polls = 0;; ++polls) {
+      int finished = 0;
+      mpiCheck(MPI_Test(&request, &finished, MPI_STATUS_IGNORE), "MPI_Test");
+      if (finished) break;
+      if (polls < 100) continue;
+      std::this_thread::sleep_for(pause);
+      pause = std::min(2 * pause, std::chrono::microseconds(1000));
+    }
+  }
+}
+
 void MpiCommunicator::abort(const std::string& message) {
   // A bad input fails every rank the same way: rank 0 reports and aborts the group at once; the
   // others wait two seconds first, so that one line is printed instead of one per rank (and Open

@@ -53,6 +53,7 @@ class MpiCommunicator : public Communicator {
   void gatherv(const void* send, uint64_t bytes, void* recv, std::span<const uint64_t> recvBytes,
                std::span<const uint64_t> recvOffsets, int root) override;
   void broadcast(void* data, uint64_t bytes, int root) override;
+  void broadcastPatiently(void* data, uint64_t bytes, int root) override;
   // Prints the message on stderr and calls MPI_Abort on MPI_COMM_WORLD: every rank ends.
   [[noreturn]] void abort(const std::string& message) override;
 

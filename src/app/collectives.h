@@ -24,6 +24,9 @@ class Collectives : public border::RankExchange {
   virtual uint64_t sum(uint64_t v) = 0;
   // Rank 0's `bytes` at `data` to every rank (the viewer's per-frame state).
   virtual void broadcast(void* data, uint64_t bytes) = 0;
+  // As broadcast, sleeping instead of spinning while rank 0 keeps the others waiting
+  // (comp::Communicator::broadcastPatiently); every rank must call this one.
+  virtual void broadcastPatiently(void* data, uint64_t bytes) = 0;
   // The compositor's communicator (nullptr on one rank: no exchange).
   virtual comp::Communicator* communicator() = 0;
 };
@@ -46,6 +49,7 @@ class SingleProcess final : public Collectives {
   double sum(double v) override { return v; }
   uint64_t sum(uint64_t v) override { return v; }
   void broadcast(void*, uint64_t) override {}
+  void broadcastPatiently(void*, uint64_t) override {}
   std::vector<std::vector<double>> exchange(
       const std::vector<std::vector<double>>& toRank) override {
     return toRank;

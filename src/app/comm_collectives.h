@@ -16,6 +16,9 @@ class CommCollectives final : public Collectives {
   double sum(double v) override;
   uint64_t sum(uint64_t v) override { return comm_.allreduceSum(v); }
   void broadcast(void* data, uint64_t bytes) override { comm_.broadcast(data, bytes, 0); }
+  void broadcastPatiently(void* data, uint64_t bytes) override {
+    comm_.broadcastPatiently(data, bytes, 0);
+  }
   std::vector<std::vector<double>> exchange(
       const std::vector<std::vector<double>>& toRank) override;
   // One rank needs no exchange: the compositor gets no communicator then.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <ctime>
 
 namespace sm {
 
@@ -16,5 +17,13 @@ class Timer {
  private:
   std::chrono::steady_clock::time_point start_;
 };
+
+// CPU time of the calling thread, in milliseconds: with a Timer, tells a wait that sleeps from one
+// that spins.
+inline double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
 
 }  // namespace sm

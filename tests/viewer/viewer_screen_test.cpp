@@ -150,5 +150,26 @@ TEST(ViewerMpi, TwoRanksShowWhatOneRankShows) {
             size_t(oneImage.width * oneImage.height / 10));
 }
 
+// While rank 0 holds each played step for 1/F s, rank 1 waits for the next frame's state: asleep,
+// not spinning in the broadcast as a blocking MPI broadcast would (its thread's CPU time then
+// equals the wait).
+TEST(ViewerMpi, RanksWaitingForRankZeroSleep) {
+  const std::string dir = outputDir("ViewerMpi.Waiting");
+  const std::string mesh = generateTestMesh(dir);
+  CommandResult r =
+      runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + mpiexec() + " -n 2 --oversubscribe " +
+                     shellmarch() + " view " + quote(mesh) +
+                     " --field vortex --size 32x24 --headless --print-camera --play "
+                     "--frames 8 --fps 4",
+                 dir, "paced");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = lastJson(r.out);
+  const double waited = j["other_ranks_state_wait_ms"].get<double>();
+  const double cpu = j["other_ranks_state_wait_cpu_ms"].get<double>();
+  std::printf("rank 1 waited %.0f ms for the state, %.1f ms of CPU time\n", waited, cpu);
+  EXPECT_GE(waited, 1000.0);  // seven steps held 250 ms each
+  EXPECT_LE(cpu, 0.2 * waited);
+}
+
 }  // namespace
 }  // namespace sm::test

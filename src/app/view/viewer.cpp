@@ -65,7 +65,13 @@ class Viewer {
   void writeScreenshots();
   void finish();
   // --print-camera: the final camera and settings, and the render arguments that reproduce them.
-  nlohmann::json report(uint64_t errors) const;
+  // Waits of the ranks other than 0 for the frame's state, over the session: the longest one's
+  // wall time and the CPU time its main thread spent in them (collective: every rank calls it).
+  struct StateWaits {
+    double ms = 0, cpuMs = 0;
+  };
+  StateWaits otherRanksStateWaits();
+  nlohmann::json report(uint64_t errors, const StateWaits& waits) const;
 
   const app::RenderJob& job_;
   const ViewOptions& options_;
@@ -89,6 +95,7 @@ class Viewer {
   using Clock = std::chrono::steady_clock;
   std::optional<Clock::time_point> stepSince_;
   double paceWaitMs_ = 0;
+  StateWaits stateWaits_;  // this rank's
   std::optional<double> shortestPlayedStepMs_;
 };
 
@@ -122,7 +129,12 @@ void Viewer::run() {
   for (;;) {
     Timer frameTimer;
     if (root()) gatherInput();
-    coll_.broadcast(&state_, sizeof state_);
+    // Patiently: the other ranks may wait here long, while rank 0 waits for input or paces play.
+    const Timer wait;
+    const double cpu = threadCpuMs();
+    coll_.broadcastPatiently(&state_, sizeof state_);
+    stateWaits_.ms += wait.ms();
+    stateWaits_.cpuMs += threadCpuMs() - cpu;
     if (state_.quit) break;
     render::FrameResult frame = scene_->render(state_, std::move(sparePixels_));
     const uint64_t fragments = coll_.sum(uint64_t(frame.fragments));
@@ -272,7 +284,11 @@ void Viewer::writeScreenshots() {
   local_.screenshots.clear();
 }
 
-nlohmann::json Viewer::report(uint64_t errors) const {
+Viewer::StateWaits Viewer::otherRanksStateWaits() {
+  return {coll_.max(root() ? 0.0 : stateWaits_.ms), coll_.max(root() ? 0.0 : stateWaits_.cpuMs)};
+}
+
+nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   const FieldInfo& f = scene_->field();
   const scene::Camera& home = scene_->homeCamera();
   const auto& tf = scene_->settings().transferFunction;
@@ -290,6 +306,8 @@ nlohmann::json Viewer::report(uint64_t errors) const {
   j["playing"] = bool(state_.playing);
   j["fps_cap"] = options_.fps;
   j["pace_wait_ms"] = paceWaitMs_;
+  j["other_ranks_state_wait_ms"] = waits.ms;
+  j["other_ranks_state_wait_cpu_ms"] = waits.cpuMs;
   j["shortest_played_step_ms"] =
       shortestPlayedStepMs_ ? nlohmann::json(*shortestPlayedStepMs_) : nlohmann::json(nullptr);
   j["colormap"] = colormap;
@@ -342,8 +360,9 @@ void Viewer::finish() {
     writeScreenshots();
   }
   const uint64_t errors = coll_.sum(scene_->context().validationErrors());
+  const StateWaits waits = otherRanksStateWaits();
   if (root() && options_.printCamera) {
-    std::printf("%s\n", report(errors).dump().c_str());
+    std::printf("%s\n", report(errors, waits).dump().c_str());
     std::fflush(stdout);
   }
   if (errors) throw Error("the Vulkan validation layer reported ", errors, " error(s)");
