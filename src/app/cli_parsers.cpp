@@ -80,6 +80,36 @@ scene::ClipPlane parseClipPlane(const std::string& option, const std::string& va
   return p;
 }
 
+std::vector<scene::OpacityPoint> parseOpacityPoints(const std::string& option,
+                                                    const std::string& value) {
+  std::vector<scene::OpacityPoint> points;
+  std::stringstream ss(value);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const size_t colon = item.find(':');
+    if (colon == std::string::npos)
+      throw Error(option, ": '", item, "' is not VALUE:OPACITY (in '", value, "')");
+    const double v = numbers(option, item.substr(0, colon), ',', 1)[0];
+    const double a = numbers(option, item.substr(colon + 1), ',', 1)[0];
+    points.push_back({v, a});
+  }
+  if (points.empty()) throw Error(option, ": '", value, "' has no VALUE:OPACITY points");
+  scene::TransferFunction check;
+  check.table.resize(2);
+  scene::setOpacityPoints(check, points, option);  // the same checks as when applied
+  return points;
+}
+
+std::string formatOpacityPoints(const std::vector<scene::OpacityPoint>& points) {
+  std::string out;
+  char buf[64];
+  for (const scene::OpacityPoint& p : points) {
+    std::snprintf(buf, sizeof buf, "%.17g:%.17g", p.value, p.opacity);
+    out += (out.empty() ? "" : ",") + std::string(buf);
+  }
+  return out;
+}
+
 std::string formatClipPlane(const scene::ClipPlane& plane) {
   std::string out;
   for (double d : {plane.point.x, plane.point.y, plane.point.z, plane.normal.x, plane.normal.y,

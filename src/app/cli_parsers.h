@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -31,6 +32,10 @@ render::Integration parseIntegration(const std::string& value);        // sample
 scene::ClipPlane parseClipPlane(const std::string& option, const std::string& value);
 // The 6-number form of a plane, with enough digits to read back the same doubles.
 std::string formatClipPlane(const scene::ClipPlane& plane);
+// "V:A,V:A,..." opacity control points in data values (scene::setOpacityPoints checks them).
+std::vector<scene::OpacityPoint> parseOpacityPoints(const std::string& option,
+                                                    const std::string& value);
+std::string formatOpacityPoints(const std::vector<scene::OpacityPoint>& points);    // exact
 render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
 
 }  // namespace sm::app

@@ -40,6 +40,9 @@ struct RenderJob {
   render::Integration integration = render::Integration::Sampled;
   render::Shading shading;
   std::vector<scene::ClipPlane> clipPlanes;  // --clip
+  // --opacity: replaces the colour map's opacity (for the field rendered; in the viewer, the
+  // first field shown)
+  std::vector<scene::OpacityPoint> opacityPoints;
   bool allTypePipelines = false;
   std::string l2Heatmap;   // also composite single-fragment; write the L2 difference heatmap here
   std::string heatmaps;    // prefix: fragment-count heatmaps per rank and combined (PNG)

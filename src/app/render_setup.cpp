@@ -73,6 +73,8 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.transferFunction = scene::makeTransferFunction(job.colormap);
   s.transferFunction.lo = range.first;
   s.transferFunction.hi = range.second;
+  if (!job.opacityPoints.empty())
+    scene::setOpacityPoints(s.transferFunction, job.opacityPoints, "--opacity");
   s.transferFunction.opacityScale = job.opacityScale;
   s.transferFunction.unitDistance =
       job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));

@@ -33,6 +33,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
       "--colormap", job.colormap,
       "viridis, cool-to-warm, inferno, plasma, grayscale, jet, turbo, or a ParaView .json");
   cmd->add_option("--range", t["--range"], "Scalar range LO,HI (default: the field's range)");
+  cmd->add_option("--opacity", t["--opacity"],
+                  "Opacity map as VALUE:OPACITY points in data values, linear between them "
+                  "(e.g. 2:0,3:0.8,6:0.8); default: the colour map's (a ramp over the range)");
   cmd->add_option("--opacity-scale", job.opacityScale, "Multiplies the opacity map (default 1)");
   cmd->add_option("--unit-distance", t["--unit-distance"],
                   "Length over which opacity 1 gives optical depth 1 (default: diagonal / 8)");
@@ -82,6 +85,8 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   if (!get("--at").empty()) job.at = parseVec3("--at", get("--at"));
   if (!get("--up").empty()) job.up = parseVec3("--up", get("--up"));
   if (!get("--range").empty()) job.range = parseRange("--range", get("--range"));
+  if (!get("--opacity").empty())
+    job.opacityPoints = parseOpacityPoints("--opacity", get("--opacity"));
   if (!get("--unit-distance").empty())
     job.unitDistance = parsePositive("--unit-distance", get("--unit-distance"));
   if (!get("--step").empty()) job.step = parsePositive("--step", get("--step"));

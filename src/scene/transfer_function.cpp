@@ -161,6 +161,33 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   return tf;
 }
 
+void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
+                      const std::string& what) {
+  if (points.empty()) throw Error(what, ": no opacity points");
+  for (size_t i = 0; i < points.size(); ++i) {
+    const OpacityPoint& p = points[i];
+    if (!std::isfinite(p.value) || !(p.opacity >= 0.0 && p.opacity <= 1.0))
+      throw Error(what, ": point ", i + 1, " (", p.value, ":", p.opacity,
+                  ") needs a finite value and an opacity in [0, 1]");
+    if (i > 0 && p.value < points[i - 1].value)
+      throw Error(what, ": point ", i + 1, " (value ", p.value, ") comes before point ", i,
+                  " (value ", points[i - 1].value, "): give the points in increasing value");
+  }
+  auto at = [&](double v) {
+    if (v < points.front().value) return points.front().opacity;
+    if (v >= points.back().value) return points.back().opacity;
+    size_t k = 0;  // points[k].value <= v < points[k + 1].value
+    while (!(v < points[k + 1].value)) ++k;
+    const double f = (v - points[k].value) / (points[k + 1].value - points[k].value);
+    return points[k].opacity + f * (points[k + 1].opacity - points[k].opacity);
+  };
+  const size_t n = tf.table.size();
+  for (size_t i = 0; i < n; ++i) {
+    const double x = n > 1 ? double(i) / double(n - 1) : 0.0;
+    tf.table[i].a = float(at(tf.hi > tf.lo ? tf.lo + x * (tf.hi - tf.lo) : tf.lo));
+  }
+}
+
 TransferFunction makeTransferFunction(const std::string& colormap, int entries) {
   if (entries < 256) throw Error("transfer function: ", entries, " entries (at least 256)");
   if (fileExtension(colormap) == ".json")

@@ -9,6 +9,7 @@
 //   homogeneous slab of thickness L has opacity 1 - exp(-sigma * L) whatever dt is.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,18 @@ std::vector<std::string> builtinColormapNames();
 // entries. Opacity is a linear ramp 0..1 unless the JSON gives "Points". Throws sm::Error naming
 // the option or file.
 TransferFunction makeTransferFunction(const std::string& colormap, int entries = 256);
+
+// An opacity control point in data values (`--opacity`), as ParaView's opacity editor sets them.
+struct OpacityPoint {
+  double value, opacity;
+};
+// Replaces the table's opacity by the points' piecewise-linear interpolation, evaluated at each
+// entry's data value over [tf.lo, tf.hi]: the first point's opacity below it, the last's above.
+// Points must be sorted by value; equal values make a step (the later point holds from there
+// on). Throws sm::Error, naming `what`, for no points, unsorted or non-finite values, or an
+// opacity outside [0, 1].
+void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
+                      const std::string& what);
 
 // Parses a ParaView colour map (an object, or an array whose first element is one) with
 // "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...), "ColorSpace"

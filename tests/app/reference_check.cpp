@@ -2,7 +2,8 @@
 // [max-rmse]
 //                 [time-step]
 // Renders MESH with the double-precision CPU reference (Grid mode: the same samples as the GPU),
-// clipped by the planes of REFERENCE_CHECK_CLIP if set,
+// clipped by the planes of REFERENCE_CHECK_CLIP and with the opacity points of
+// REFERENCE_CHECK_OPACITY if set,
 // composites over black like `render --background 0,0,0`, and compares with IMAGE.
 #include <algorithm>
 #include <cstdio>
@@ -45,6 +46,21 @@ int main(int argc, char** argv) {
     tf.unitDistance = std::atof(argv[7]);
     tf.lo = std::atof(argv[8]);
     tf.hi = std::atof(argv[9]);
+    // Opacity points from REFERENCE_CHECK_OPACITY="V:A,V:A,...", as `render --opacity` takes them.
+    if (const char* opacity = std::getenv("REFERENCE_CHECK_OPACITY")) {
+      std::vector<scene::OpacityPoint> points;
+      for (const char* p = opacity; *p;) {
+        scene::OpacityPoint op;
+        int used = 0;
+        if (std::sscanf(p, "%lf:%lf%n", &op.value, &op.opacity, &used) != 2)
+          throw std::runtime_error(std::string("REFERENCE_CHECK_OPACITY: '") + opacity +
+                                   "' is not V:A,V:A,...");
+        points.push_back(op);
+        p += used;
+        if (*p == ',') ++p;
+      }
+      scene::setOpacityPoints(tf, points, "REFERENCE_CHECK_OPACITY");
+    }
     scene::Camera cam;
     cam.eye = {std::atof(argv[11]), std::atof(argv[12]), std::atof(argv[13])};
     cam.at = {std::atof(argv[14]), std::atof(argv[15]), std::atof(argv[16])};

@@ -358,6 +358,35 @@ TEST(ViewerHeadless, TheCutKeyClipsAsRenderDoes) {
   EXPECT_EQ(scene::compareImages(uncut, scene::readPng(off)).maxAbs, 0.0);
 }
 
+// --opacity's points are values of the first field: shown, its frames are render's with the
+// points; another field (f) keeps its colour map's opacity; back on the first, the points again.
+TEST(ViewerHeadless, OpacityPointsGoWithTheFirstField) {
+  const std::string dir = outputDir("ViewerHeadless.Opacity");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = headlessView(mesh, "64x48") + "--opacity 0.3:0,0.5:1 ";
+  auto hasOpacity = [](const nlohmann::json& j) {
+    for (const auto& a : j["render_args"])
+      if (a.get<std::string>().rfind("--opacity=", 0) == 0) return true;
+    return false;
+  };
+  const std::pair<const char*, bool> sessions[] = {
+      {"frame\nquit\n", true},
+      {"key f\nframe\nquit\n", false},
+      {"key f\nframe\nkey f shift\nframe\nquit\n", true}};
+  int n = 0;
+  for (const auto& [script, first] : sessions) {
+    const std::string tag = "session" + std::to_string(++n), shot = dir + "/" + tag + ".png";
+    CommandResult r = runCommand(view + "--script " + quote(writeFile(dir, tag + ".txt", script)) +
+                                     " --screenshot " + quote(shot),
+                                 dir, tag);
+    expectCleanRun(r);
+    const nlohmann::json j = lastJson(r.out);
+    EXPECT_EQ(j["field"] == "vortex", first) << j.dump();
+    EXPECT_EQ(hasOpacity(j), first) << j.dump();
+    expectMatchesRender(dir, mesh, j, shot, tag + "-render");
+  }
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

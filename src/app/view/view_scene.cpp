@@ -167,15 +167,20 @@ void ViewScene::applyStep(ViewState& state) {
 
 void ViewScene::applyState(ViewState& state) {
   applyStep(state);
-  if (state.colormap != colormap_) {
-    const double lo = settings_.transferFunction.lo, hi = settings_.transferFunction.hi;
+  // The table follows the colour map and, with --opacity, the field: the points are values of
+  // the first field, and the others keep their colour map's opacity.
+  const bool points = !job_.opacityPoints.empty();
+  if (state.colormap != colormap_ || (points && fieldIndex_ != tableField_)) {
     const double unit = settings_.transferFunction.unitDistance;
     settings_.transferFunction =
         scene::makeTransferFunction(choices_.colormaps[size_t(state.colormap)]);
-    settings_.transferFunction.lo = lo;
-    settings_.transferFunction.hi = hi;
+    settings_.transferFunction.lo = field_.range.first;
+    settings_.transferFunction.hi = field_.range.second;
     settings_.transferFunction.unitDistance = unit;
+    if (points && fieldIndex_ == 0)
+      scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints, "--opacity");
     colormap_ = state.colormap;
+    tableField_ = fieldIndex_;
   }
   settings_.transferFunction.opacityScale = state.opacityScale;
   settings_.camera = state.camera();

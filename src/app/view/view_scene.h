@@ -88,6 +88,7 @@ class ViewScene {
   FieldInfo field_;
   std::vector<std::optional<FieldInfo>> fields_;  // choices_.fields', once selected
   int fieldIndex_ = -1, step_ = -1, colormap_ = -1;
+  int tableField_ = 0;  // the field the transfer function's opacity was made for
 };
 
 // The time step --time names: one index (the viewer shows one step at a time).

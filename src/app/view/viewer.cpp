@@ -340,6 +340,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
                       "--step=" + fmt("%.17g", state_.dt),
                       "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
   if (legend_) j["render_args"].push_back("--legend");
+  if (!job_.opacityPoints.empty() && state_.field == 0)
+    j["render_args"].push_back("--opacity=" + app::formatOpacityPoints(job_.opacityPoints));
   j["legend"] = legend_;
   // Every plane the frame was clipped by: the view's --clip planes and the cut.
   for (const scene::ClipPlane& p : scene_->settings().clipPlanes)
