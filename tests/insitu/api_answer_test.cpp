@@ -45,6 +45,20 @@ using InsituApi = RendererSuite;
 
 enum class Given { PerVertex, PerElement };
 
+// The slab's frame: a constant field of extinction sigma seen from a corner, the whole integral
+// (no early termination).
+api::RenderSettings slabSettings(double sigma) {
+  api::RenderSettings s;
+  s.width = s.height = 40;
+  s.camera = api::Camera{{1.9, 2.3, 2.7}, {0.5, 0.5, 0.5}, {0, 0, 1}, 40};
+  s.table = {{0.2f, 0.6f, 1.0f, 1.0f}, {0.2f, 0.6f, 1.0f, 1.0f}};
+  s.range = {0.0, 1.0};
+  s.unitDistance = 1.0 / sigma;
+  s.sampleDistance = 0.01;
+  s.earlyTermination = 2.0;  // off: the whole integral
+  return s;
+}
+
 // A unit cube of constant extinction sigma: every pixel's opacity is 1 - exp(-sigma L), whether
 // the constant is given per vertex or per element.
 void expectSlab(api::Renderer& vis, const mesh::UnstructuredMesh& m, const char* name,
@@ -56,14 +70,7 @@ void expectSlab(api::Renderer& vis, const mesh::UnstructuredMesh& m, const char*
   else
     vis.setCellField("density", std::vector<float>(m.numCells(), 0.5f));
   const double sigma = 1.3;
-  api::RenderSettings s;
-  s.width = s.height = 40;
-  s.camera = api::Camera{{1.9, 2.3, 2.7}, {0.5, 0.5, 0.5}, {0, 0, 1}, 40};
-  s.table = {{0.2f, 0.6f, 1.0f, 1.0f}, {0.2f, 0.6f, 1.0f, 1.0f}};
-  s.range = {0.0, 1.0};
-  s.unitDistance = 1.0 / sigma;
-  s.sampleDistance = 0.01;
-  s.earlyTermination = 2.0;  // off: the whole integral
+  const api::RenderSettings s = slabSettings(sigma);
   api::Image img = vis.render(s);
   ASSERT_EQ(img.rgba.size(), size_t(s.width) * s.height * 4) << name;
   const scene::CameraFrame cam = frameOf(s);
@@ -103,14 +110,7 @@ TEST_F(InsituApi, ClipPlanesCutTheSlab) {
   vis_->setMesh(sim.view());
   vis_->setField("density", std::vector<float>(sim.vertices(), 0.5f));
   const double sigma = 1.3;
-  api::RenderSettings s;
-  s.width = s.height = 40;
-  s.camera = api::Camera{{1.9, 2.3, 2.7}, {0.5, 0.5, 0.5}, {0, 0, 1}, 40};
-  s.table = {{0.2f, 0.6f, 1.0f, 1.0f}, {0.2f, 0.6f, 1.0f, 1.0f}};
-  s.range = {0.0, 1.0};
-  s.unitDistance = 1.0 / sigma;
-  s.sampleDistance = 0.01;
-  s.earlyTermination = 2.0;
+  api::RenderSettings s = slabSettings(sigma);
   s.clipPlanes = {{{0.6, 0, 0}, {-2, 0, 0}}, {{0, 0, 0.3}, {0, 0, 1}}};
   api::Image img = vis_->render(s);
   const scene::CameraFrame cam = frameOf(s);

@@ -10,52 +10,48 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/bench/bench_common.h"
-#include "app/bench/paired_rounds.h"
+#include "app/bench/bench_render_setup.h"
 #include "app/bench/reference_images.h"
 #include "app/bench/registry.h"
 #include "app/bench/render_measure.h"
 #include "app/bench/render_report.h"
 #include "app/cli_parsers.h"
-#include "app/rank_pipeline.h"
-#include "app/rank_share.h"
-#include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/timer.h"
 #include "prep/memory_report.h"
-#include "render/gpu_scene.h"
 
 namespace sm::app::bench {
+
+render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w, int h) {
+  render::RenderSettings s;
+  s.width = w;
+  s.height = h;
+  s.camera = scene::frameBounds(sc.share.wholeBounds, scene::parseViewPreset(a.view), double(w) / h,
+                                a.fovy);
+  s.transferFunction = scene::makeTransferFunction(a.colormap);
+  s.transferFunction.lo = sc.range.first;
+  s.transferFunction.hi = sc.range.second;
+  s.transferFunction.opacityScale = a.opacityScale;
+  s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
+  s.dt = a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean());
+  s.earlyTermination = a.earlyTermination;
+  return s;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  size_t b = 0;
+  while (b <= s.size()) {
+    size_t e = s.find(',', b);
+    if (e == std::string::npos) e = s.size();
+    if (e > b) out.push_back(s.substr(b, e - b));
+    b = e + 1;
+  }
+  return out;
+}
+
 namespace {
-
-struct RenderArgs {
-  std::string mesh;  // "" = the demo capsule (ci/demo.sh's options), generated under workDir
-  std::string field = "vortex", colormap = "cool-to-warm", view = "iso";
-  double fovy = 30, opacityScale = 1, earlyTermination = 0.99, step = 0;  // step 0: default
-  std::string stepText;  // --step as given (parsed like render's)
-  std::string sizes = "512,1024", references = "grid,converged",
-              integrators = "preintegration,linear";
-  std::string coarser = "2,4";  // extra compacted runs at dt times these
-  std::string exact = "1,4";    // element-exact runs at dt times these (dt bounds non-tet pieces)
-  int runs = 3, vtkRuns = 3;
-  int pairRounds = 3;  // paired_rounds.h
-  std::string pairIntegrators = "preintegration";
-  double refTolerance = 1e-4;
-  std::string workDir = "out/bench", json, device, python = defaultPython();
-  bool noVtk = false;
-};
-
-// Everything measured once per run: the mesh on the host (for the reference) and on the device,
-// compacted and plain.
-struct Scenes {
-  RankShare share;  // whole mesh (fields kept; geometry moved into preparation)
-  mesh::UnstructuredMesh refMesh;
-  std::vector<float> values;  // field step 0 in mesh order
-  std::pair<double, double> range;
-  PreparedShare compact, plain;
-  nlohmann::json setup;
-};
 
 std::string demoMesh(const RenderArgs& a) {
   if (!a.mesh.empty()) return a.mesh;
@@ -93,34 +89,6 @@ Scenes loadScenes(const RenderArgs& a, const std::string& path) {
   sc.setup["shell_triangles"] = sc.compact.rank.numShellTriangles();
   sc.setup["array"] = f->numSteps() > 1 ? a.field + "@t0" : a.field;
   return sc;
-}
-
-render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w, int h) {
-  render::RenderSettings s;
-  s.width = w;
-  s.height = h;
-  s.camera = scene::frameBounds(sc.share.wholeBounds, scene::parseViewPreset(a.view), double(w) / h,
-                                a.fovy);
-  s.transferFunction = scene::makeTransferFunction(a.colormap);
-  s.transferFunction.lo = sc.range.first;
-  s.transferFunction.hi = sc.range.second;
-  s.transferFunction.opacityScale = a.opacityScale;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
-  s.dt = a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean());
-  s.earlyTermination = a.earlyTermination;
-  return s;
-}
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  size_t b = 0;
-  while (b <= s.size()) {
-    size_t e = s.find(',', b);
-    if (e == std::string::npos) e = s.size();
-    if (e > b) out.push_back(s.substr(b, e - b));
-    b = e + 1;
-  }
-  return out;
 }
 
 // Compacted frames at coarser sample spacings: shellmarch's speed at a given error, so that the
@@ -218,121 +186,6 @@ nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, const vk::Cont
   measureCoarser(a, ctx, compact, s, j, images);
   addReferences(a, sc, ref, s, j, images);
   return j;
-}
-
-nlohmann::json vtkJob(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                      const nlohmann::json& sizes, const std::vector<std::string>& integrators,
-                      const std::string& outDir) {
-  render::RenderSettings s = settingsFor(a, sc, 1, 1);
-  const auto& tf = s.transferFunction;
-  nlohmann::json table = nlohmann::json::array();
-  for (const glm::vec4& e : tf.table) table.push_back({e.r, e.g, e.b, e.a});
-  nlohmann::json job;
-  job["mesh"] = std::filesystem::absolute(mesh).string();
-  job["array"] = sc.setup["array"];
-  job["runs"] = a.vtkRuns;
-  job["integrators"] = integrators;
-  job["out_dir"] = std::filesystem::absolute(outDir).string();
-  job["tf"] = {{"lo", tf.lo},
-               {"hi", tf.hi},
-               {"table", table},
-               {"opacity_scale", tf.opacityScale},
-               {"unit_distance", tf.unitDistance}};
-  for (const auto& sz : sizes)
-    job["sizes"].push_back(
-        {{"width", sz["width"]}, {"height", sz["height"]}, {"view", sz["camera"]}});
-  return job;
-}
-
-// VTK's script on `sizes` (entries of report["sizes"]) with `integrators`; `tag` names its job,
-// result and log files in outDir.
-PeerRun vtkRun(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-               const nlohmann::json& sizes, const std::vector<std::string>& integrators,
-               const std::string& outDir, const std::string& tag) {
-  std::filesystem::create_directories(outDir);
-  const std::string jobPath = joinPath(outDir, tag + "_job.json");
-  writeJsonFile(jobPath, vtkJob(a, sc, mesh, sizes, integrators, outDir));
-  return runPeer({a.python,
-                  "vtk_render.py",
-                  {"--job", jobPath},
-                  joinPath(outDir, tag + ".json"),
-                  joinPath(outDir, tag + ".log"),
-                  true});
-}
-
-nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                      const nlohmann::json& sizes) {
-  if (a.noVtk) return {{"available", false}, {"reason", "--no-vtk"}};
-  std::fprintf(stderr, "rendering with VTK (%d warm frames per size and integrator)\n", a.vtkRuns);
-  PeerRun run = vtkRun(a, sc, mesh, sizes, splitList(a.integrators), a.workDir, "vtk_render");
-  if (!run.ok) {
-    std::fprintf(stderr, "VTK peer not measured: %s\n", run.error.c_str());
-    return {{"available", false}, {"reason", run.error}};
-  }
-  run.result["available"] = true;
-  return run.result;
-}
-
-// The settings of shellmarch's run `label` at image size `size` (an entry of report["sizes"]).
-render::RenderSettings settingsOfRun(const RenderArgs& a, const Scenes& sc,
-                                     const nlohmann::json& size, const std::string& label) {
-  render::RenderSettings s =
-      settingsFor(a, sc, size["width"].get<int>(), size["height"].get<int>());
-  if (label == "shellmarch compacted") return s;
-  const nlohmann::json* run = nullptr;
-  for (const auto& m : size["shellmarch"]["compacted_coarser"])
-    if (m["label"].get<std::string>() == label) run = &m;
-  SM_CHECK_MSG(run, concat("no run '", label, "' at this size"));  // goals name runs of their size
-  s.dt = (*run)["dt"].get<double>();
-  if (run->value("integration", "") == "element-exact")
-    s.integration = render::Integration::ElementExact;
-  if (run->value("stage_split", false)) s.segmentCacheBytes = 0;
-  return s;
-}
-
-const nlohmann::json& sizeOfGoal(const nlohmann::json& report, const nlohmann::json& goal) {
-  const nlohmann::json* size = nullptr;
-  for (const auto& s : report["sizes"])
-    if (s["width"] == goal["width"] && s["height"] == goal["height"]) size = &s;
-  SM_CHECK(size);
-  return *size;
-}
-
-// Paired rounds (paired_rounds.h) of the compacted scene's equal-error runs against VTK.
-void pairWithVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                 const vk::Context& ctx, const render::GpuScene& compact, nlohmann::json& report) {
-  if (a.pairRounds < 1 || !report["vtk"]["available"].get<bool>()) return;
-  const std::vector<std::string> integrators = splitList(a.pairIntegrators);
-  std::fprintf(stderr, "paired rounds: %d, shellmarch then VTK (%s) in each\n", a.pairRounds,
-               a.pairIntegrators.c_str());
-  int round = 0;
-  PairedRoundHooks hooks;
-  hooks.shellmarch = [&](const nlohmann::json& g) {
-    const nlohmann::json& size = sizeOfGoal(report, g);
-    RenderMeasurement m = measureRender(
-        ctx, compact, settingsOfRun(a, sc, size, g["equal_error_run"].get<std::string>()), a.runs);
-    return FrameTime{median(m.totalMs), median(m.cpuMs)};
-  };
-  hooks.vtk = [&](const std::vector<const nlohmann::json*>& goals) {
-    nlohmann::json sizes = nlohmann::json::array();
-    for (const nlohmann::json* g : goals) {
-      const nlohmann::json& s = sizeOfGoal(report, *g);
-      if (std::find(sizes.begin(), sizes.end(), s) == sizes.end()) sizes.push_back(s);
-    }
-    ++round;
-    PeerRun run = vtkRun(a, sc, mesh, sizes, integrators, joinPath(a.workDir, "paired"),
-                         concat("vtk_round", round));
-    if (!run.ok) throw Error("VTK: ", run.error);
-    std::vector<FrameTime> out;
-    for (const nlohmann::json* g : goals)
-      for (const auto& vs : run.result["sizes"])
-        if (vs["width"] == (*g)["width"] && vs["height"] == (*g)["height"])
-          for (const auto& v : vs["integrators"])
-            if (v["integrator"] == (*g)["vtk_integrator"])
-              out.push_back({v["warm_ms"].get<double>(), v["warm_cpu_ms"].get<double>()});
-    return out;
-  };
-  runPairedRounds(report, a.pairRounds, integrators, hooks, kRenderSpeedGoal);
 }
 
 // Lists of names: each at most once (a repeated integrator made VTK render it twice, and every
