@@ -49,6 +49,13 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   mem.accelerationStructures = gpu.accelerationStructureBytes();
   json_["device"] = device;
   json_["dt"] = s.dt;
+  json_["clip_planes"] = nlohmann::json::array();
+  for (const scene::ClipPlane& p : s.clipPlanes)
+    json_["clip_planes"].push_back({{"point", {p.point.x, p.point.y, p.point.z}},
+                                    {"normal", {p.normal.x, p.normal.y, p.normal.z}}});
+  json_["opacity_points"] = nlohmann::json::array();
+  for (const scene::OpacityPoint& p : job_.opacityPoints)
+    json_["opacity_points"].push_back({p.value, p.opacity});
   json_["load_seconds_max"] = coll_.max(loadSeconds);
   json_["prepare_seconds_max"] = coll_.max(prepSeconds);
   json_["prepare_from_cache"] = fromCache;

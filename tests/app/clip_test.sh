@@ -24,6 +24,7 @@ for n in 1 3; do
 done
 "$diff" clip1.pfm clip3.pfm --max-abs 1e-5
 json clip1.json "j['frames'][0]['lost_rays'] == 0"
+json clip3.json "j['clip_planes'] == [{'point': [0.5, 0.5, 0.5], 'normal': [1, 0.8, -0.6]}, {'point': [0.8, 0, 0], 'normal': [-1, 0, 0]}]"
 json clip3.json "j['frames'][0]['lost_rays'] == 0"
 REFERENCE_CHECK_CLIP="$CUT1;0.8,0,0,-1,0,0" "$refcheck" cube.pvtu vortex clip1.pfm $W $H $STEP $UNIT \
   $LO $HI $CMAP ${EYE//,/ } ${AT//,/ } ${UP//,/ } $FOVY 0.0039 0

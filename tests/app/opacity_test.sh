@@ -32,6 +32,7 @@ REFERENCE_CHECK_OPACITY=$POINTS "$refcheck" cube.pvtu vortex window1.pfm $W $H $
 # Nothing opaque, nothing drawn: no fragment on any rank.
 mpi 3 "$sm" render cube.pvtu "${tf[@]}" --opacity 0:0 --stats-json none.json --out none.pfm >/dev/null
 json none.json "sum(r['fragments'] for r in j['frames'][0]['ranks']) == 0"
+json none.json "j['opacity_points'] == [[0, 0]]"
 
 # The viewer: its render arguments carry the points, and render draws its screenshot with them.
 "$sm" view cube.pvtu "${tf[@]}" --opacity $POINTS --headless --frames 1 --print-camera \
