@@ -28,8 +28,7 @@ vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
 }  // namespace
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
-                                                  const comp::DeepCompositor& compositor,
-                                                  PassOptions options) {
+                                                  ListConstants lists, PassOptions options) {
   return {{0, scene.compact() ? 1u : 0u},
           {1, options.allTypes ? 0xFu : scene.typesPresent()},
           {10, ctx.hasFloat64() ? 1u : 0u},
@@ -37,13 +36,12 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
           {12, options.elementExact ? 1u : 0u},
           {13, options.shading ? 1u : 0u},
           {14, options.clip ? 1u : 0u},
-          {100, compositor.modeConstant()},
-          {101, compositor.encodingConstant()}};
+          {100, lists.mode},
+          {101, lists.encoding}};
 }
 
-CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene,
-                               const comp::DeepCompositor& c, PassOptions options,
-                               CountStoreKind kind) {
+CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
+                               PassOptions options, CountStoreKind kind) {
   const bool cached = kind == CountStoreKind::Cached;
   const auto spirv = cached ? spv::render_cached() : spv::traverse();
   pipeline_ =
@@ -59,7 +57,7 @@ void CountStorePass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, in
   dispatchPixels(pipeline_, cmd, params, w, h, 1);
 }
 
-MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
+MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
                      PassOptions options)
     : pipeline_(makePipeline(ctx, "march", spv::march(),
                              sceneSpecialization(ctx, scene, c, options), false, scene)) {}
@@ -68,8 +66,7 @@ void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h
   dispatchPixels(pipeline_, cmd, params, w, h);
 }
 
-StoreCachedPass::StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
-                                 const comp::DeepCompositor& c)
+StoreCachedPass::StoreCachedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c)
     : pipeline_(makePipeline(ctx, "store cached", spv::store_cached(),
                              sceneSpecialization(ctx, scene, c, PassOptions{}), false, scene)) {}
 
@@ -77,13 +74,65 @@ void StoreCachedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w,
   pipeline_.dispatchItems(cmd, uint64_t(w) * uint64_t(h), 64, Push{params});
 }
 
-FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& c,
+FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
                      PassOptions options)
     : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),
                              sceneSpecialization(ctx, scene, c, options), true, scene)) {}
 
 void FusedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
   dispatchPixels(pipeline_, cmd, params, w, h);
+}
+
+PassCache::PassCache(const vk::Context& ctx, const GpuScene& scene,
+                     const comp::DeepCompositor& compositor)
+    : ctx_(ctx), scene_(scene), lists_(ListConstants::of(compositor)) {}
+
+bool PassCache::serves(const GpuScene& scene, const comp::DeepCompositor& compositor) const {
+  return &scene == &scene_ && ListConstants::of(compositor) == lists_;
+}
+
+CountStorePass& PassCache::traversal() {
+  if (!traversal_) {
+    traversal_ = std::make_unique<CountStorePass>(ctx_, scene_, lists_, PassOptions{},
+                                                  CountStoreKind::Traversal);
+    ++built_;
+  }
+  return *traversal_;
+}
+
+CountStorePass& PassCache::cached(PassOptions options) {
+  auto& p = cached_[options.index()];
+  if (!p) {
+    p = std::make_unique<CountStorePass>(ctx_, scene_, lists_, options, CountStoreKind::Cached);
+    ++built_;
+  }
+  return *p;
+}
+
+StoreCachedPass& PassCache::storeCached() {
+  if (!storeCached_) {
+    storeCached_ = std::make_unique<StoreCachedPass>(ctx_, scene_, lists_);
+    ++built_;
+  }
+  return *storeCached_;
+}
+
+MarchPass& PassCache::march(PassOptions options) {
+  auto& p = march_[options.index()];
+  if (!p) {
+    p = std::make_unique<MarchPass>(ctx_, scene_, lists_, options);
+    ++built_;
+  }
+  return *p;
+}
+
+FusedPass& PassCache::fused(PassOptions options) {
+  auto& p = fused_[options.index()];
+  if (!p) {
+    p = std::make_unique<FusedPass>(ctx_, scene_, lists_, options);
+    ++built_;
+  }
+  return *p;
 }
 
 }  // namespace sm::render

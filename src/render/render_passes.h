@@ -4,11 +4,24 @@
 // fragment lists. Each owns its pipeline, specialised to the scene and the compositor's lists.
 #pragma once
 
+#include <cstdint>
+#include <memory>
+
 #include "compositor/deep_compositor.h"
 #include "render/gpu_scene.h"
 #include "vk/pipeline.h"
 
 namespace sm::render {
+
+// The compositor's list mode and encoding, as the passes' specialisation constants 100 and 101:
+// all a pass needs of the compositor (a pass outlives the compositor it was first built for).
+struct ListConstants {
+  uint32_t mode = 0, encoding = 0;
+  static ListConstants of(const comp::DeepCompositor& c) {
+    return {c.modeConstant(), c.encodingConstant()};
+  }
+  bool operator==(const ListConstants&) const = default;
+};
 
 // Specialization shared by every pass: scene (compaction, element types present), device
 // (float64 available) and the compositor's list mode and encoding.
@@ -27,8 +40,7 @@ struct PassOptions {
 };
 
 std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const GpuScene& scene,
-                                                  const comp::DeepCompositor& compositor,
-                                                  PassOptions options);
+                                                  ListConstants lists, PassOptions options);
 
 // A two-pass stage: one pipeline that counts or stores (a push constant picks the pass; one
 // pipeline, not two specialisations, because compiling the tracer is most of a renderer's first
@@ -41,8 +53,8 @@ enum class CountStoreKind { Traversal, Cached };
 
 class CountStorePass {
  public:
-  CountStorePass(const vk::Context& ctx, const GpuScene& scene,
-                 const comp::DeepCompositor& compositor, PassOptions options, CountStoreKind kind);
+  CountStorePass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists,
+                 PassOptions options, CountStoreKind kind);
   void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
@@ -52,7 +64,7 @@ class CountStorePass {
 
 class MarchPass {
  public:
-  MarchPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+  MarchPass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists,
             PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
@@ -65,8 +77,7 @@ class MarchPass {
 // pipeline, so that the tracer's runs only where rays must be traced again.
 class StoreCachedPass {
  public:
-  StoreCachedPass(const vk::Context& ctx, const GpuScene& scene,
-                  const comp::DeepCompositor& compositor);
+  StoreCachedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
@@ -75,12 +86,42 @@ class StoreCachedPass {
 
 class FusedPass {
  public:
-  FusedPass(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+  FusedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists,
             PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
   vk::ComputePipeline pipeline_;
+};
+
+// A scene's pass objects, each built the first time a frame asks for it. Renderers of the same
+// scene and list mode share one (Renderer's constructor takes it), so that a new renderer for
+// another image size (the viewer's after a resize) compiles no pipeline: pipelines depend on the
+// scene, the options and the compositor's list mode and encoding, not on the image size, and
+// compiling the tracer is most of a renderer's first frame on lavapipe (seconds on the demo).
+class PassCache {
+ public:
+  PassCache(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
+  // Whether passes built for this cache serve `compositor` (the same list mode and encoding).
+  bool serves(const GpuScene& scene, const comp::DeepCompositor& compositor) const;
+
+  CountStorePass& traversal();
+  CountStorePass& cached(PassOptions options);
+  StoreCachedPass& storeCached();
+  MarchPass& march(PassOptions options);
+  FusedPass& fused(PassOptions options);
+  uint64_t pipelinesBuilt() const { return built_; }
+
+ private:
+  const vk::Context& ctx_;
+  const GpuScene& scene_;
+  ListConstants lists_;
+  uint64_t built_ = 0;
+  std::unique_ptr<CountStorePass> traversal_;
+  std::unique_ptr<CountStorePass> cached_[PassOptions::kCombinations];
+  std::unique_ptr<StoreCachedPass> storeCached_;  // one for all: it neither traces nor marches
+  std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
+  std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
 };
 
 }  // namespace sm::render

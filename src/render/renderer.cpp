@@ -42,32 +42,19 @@ std::vector<glm::vec4> deviceTable(const scene::TransferFunction& tf) {
 
 }  // namespace
 
-Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor)
-    : ctx_(ctx), scene_(scene), compositor_(compositor), timestamps_(ctx, 8) {
+Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor,
+                   std::shared_ptr<PassCache> passes)
+    : ctx_(ctx),
+      scene_(scene),
+      compositor_(compositor),
+      passes_(passes && passes->serves(scene, compositor)
+                  ? std::move(passes)
+                  : std::make_shared<PassCache>(ctx, scene, compositor)),
+      timestamps_(ctx, 8) {
   params_ = vk::Buffer(ctx, sizeof(gpu::FrameParams), vk::kStorageUsage, vk::MemoryUse::Upload,
                        "frame params");
   stats_ = vk::Buffer(ctx, sizeof(gpu::RenderStats), vk::kStorageUsage, vk::MemoryUse::Readback,
                       "render stats");
-}
-
-MarchPass& Renderer::marchPass(PassOptions options) {
-  auto& p = march_[options.index()];
-  if (!p) p = std::make_unique<MarchPass>(ctx_, scene_, compositor_, options);
-  return *p;
-}
-
-CountStorePass& Renderer::cachedPass(PassOptions options) {
-  auto& p = cached_[options.index()];
-  if (!p)
-    p = std::make_unique<CountStorePass>(ctx_, scene_, compositor_, options,
-                                         CountStoreKind::Cached);
-  return *p;
-}
-
-FusedPass& Renderer::fusedPass(PassOptions options) {
-  auto& p = fused_[options.index()];
-  if (!p) p = std::make_unique<FusedPass>(ctx_, scene_, compositor_, options);
-  return *p;
 }
 
 // The table depends on the transfer function only: rebuilt when that changes, not per frame.
@@ -274,12 +261,10 @@ void Renderer::scanCounts(gpu::FrameParams& p, FrameResult& out, bool segments) 
 
 void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   // Pass 1: count each pixel's segments (the compositor's list capacities).
-  if (!traversal_)
-    traversal_ = std::make_unique<CountStorePass>(ctx_, scene_, compositor_, PassOptions{},
-                                                  CountStoreKind::Traversal);
+  CountStorePass& traversal = passes_->traversal();
   writeParams(p);
   out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
-    traversal_->recordCount(cmd, params_.address(), s.width, s.height);
+    traversal.recordCount(cmd, params_.address(), s.width, s.height);
   });
   scanCounts(p, out, true);
   // Pass 2: store the segments at the scanned offsets, then march them into fragments.
@@ -287,10 +272,10 @@ void Renderer::renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, Frame
     comp::previousWorkBarrier(cmd);  // the scan's offsets (timedDispatch)
     timestamps_.reset(cmd);
     timestamps_.write(cmd, 0);
-    traversal_->recordStore(cmd, params_.address(), s.width, s.height);
+    traversal.recordStore(cmd, params_.address(), s.width, s.height);
     vk::computeBarrier(cmd);
     timestamps_.write(cmd, 1);
-    marchPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
+    passes_->march(passOptions_).record(cmd, params_.address(), s.width, s.height);
     timestamps_.write(cmd, 2);
   });
   auto ts = timestamps_.results(3);
@@ -335,7 +320,7 @@ void Renderer::renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameP
   out.timings.fused = true;
   p.segCacheK = slots;
   p.segCache = segmentCache_.address();
-  CountStorePass& pass = cachedPass(passOptions_);
+  CountStorePass& pass = passes_->cached(passOptions_);
   // Pass 1: trace and march every ray, cache its first segments, count them.
   writeParams(p);
   out.timings.traversalMs = timedDispatch(
@@ -345,9 +330,9 @@ void Renderer::renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameP
   // too short for, if any (the tracer's pipeline, run over every pixel, costs more than the copy).
   gpu::RenderStats counters;
   stats_.download(&counters, sizeof counters);
-  if (!storeCached_) storeCached_ = std::make_unique<StoreCachedPass>(ctx_, scene_, compositor_);
+  StoreCachedPass& store = passes_->storeCached();
   out.timings.marchMs = timedDispatch([&](VkCommandBuffer cmd) {
-    storeCached_->record(cmd, params_.address(), s.width, s.height);
+    store.record(cmd, params_.address(), s.width, s.height);
     // Disjoint pixels: the two passes need no barrier between them.
     if (counters.cacheRetraces > 0) pass.recordStore(cmd, params_.address(), s.width, s.height);
   });
@@ -356,7 +341,7 @@ void Renderer::renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameP
 void Renderer::renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out) {
   writeParams(p);
   out.timings.traversalMs = timedDispatch([&](VkCommandBuffer cmd) {
-    fusedPass(passOptions_).record(cmd, params_.address(), s.width, s.height);
+    passes_->fused(passOptions_).record(cmd, params_.address(), s.width, s.height);
   });
   out.timings.fused = true;
 }

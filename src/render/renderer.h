@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -45,7 +46,10 @@ struct FrameResult {
 
 class Renderer {
  public:
-  Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor);
+  // `passes`: the pipelines of an earlier renderer of this scene, shared when they serve this
+  // compositor's lists (PassCache); otherwise, and by default, the renderer builds its own.
+  Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor,
+           std::shared_ptr<PassCache> passes = nullptr);
   // `reuse`: an earlier frame's pixels, whose storage this frame's image takes over. A frame loop
   // hands each frame's pixels back (`frame = r.render(s, std::move(frame.pixels))`): a fresh
   // image per frame costs its page faults every frame once it is over glibc's 32 MiB mapping
@@ -54,6 +58,8 @@ class Renderer {
   // Renders explicit rays (world coordinates) instead of camera rays: ray i is pixel (i, 0) of a
   // rays.size() x 1 image (the compositor must have that size). For tests aiming at vertices/edges.
   FrameResult renderRays(const RenderSettings& settings, const std::vector<WorldRay>& rays);
+  // The pipelines this renderer uses, to hand to the next renderer of the same scene.
+  const std::shared_ptr<PassCache>& passes() const { return passes_; }
   // Per-pixel counts of the last frame on this rank (statistics and heatmaps).
   std::vector<uint32_t> lastSegmentCounts() const;
   std::vector<uint32_t> lastFragmentCounts() const;
@@ -84,19 +90,11 @@ class Renderer {
   const vk::Context& ctx_;
   const GpuScene& scene_;
   comp::DeepCompositor& compositor_;
-  // Marching pipelines per integration mode, built the first time a frame asks for that mode.
-  MarchPass& marchPass(PassOptions options);
-  FusedPass& fusedPass(PassOptions options);
   void updatePreintegration(const RenderSettings& s);
   bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
 
-  CountStorePass& cachedPass(PassOptions options);
-  std::unique_ptr<CountStorePass> traversal_;
-  std::unique_ptr<CountStorePass> cached_[PassOptions::kCombinations];
-  std::unique_ptr<StoreCachedPass> storeCached_;  // one for all: it neither traces nor marches
-  std::unique_ptr<MarchPass> march_[PassOptions::kCombinations];
-  std::unique_ptr<FusedPass> fused_[PassOptions::kCombinations];
-  PassOptions passOptions_;  // of the frame being rendered
+  std::shared_ptr<PassCache> passes_;  // pipelines per pass and options, built on first use
+  PassOptions passOptions_;            // of the frame being rendered
   vk::Buffer preintegration_;
   uint64_t preintegrationKey_ = 0;
   PreintegrationTable preintegrationTable_;

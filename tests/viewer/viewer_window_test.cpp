@@ -387,6 +387,30 @@ TEST(ViewerHeadless, OpacityPointsGoWithTheFirstField) {
   }
 }
 
+// A resize makes new lists and images, not new pipelines: the session that resizes twice builds
+// as many as the one that does not, and its last frame is render's at the new size.
+TEST(ViewerHeadless, ResizingBuildsNoPipelines) {
+  const std::string dir = outputDir("ViewerHeadless.Resize");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = headlessView(mesh, "64x48");
+  const std::string shot = dir + "/resized.png";
+  CommandResult r = runCommand(
+      view + "--script " + quote(writeFile(dir, "still.txt", "frame 3\nquit\n")), dir, "still");
+  expectCleanRun(r);
+  const nlohmann::json still = lastJson(r.out);
+  r = runCommand(view + "--script " +
+                     quote(writeFile(dir, "resize.txt",
+                                     "frame\nresize 80 60\nframe\nresize 72 40\nframe\nquit\n")) +
+                     " --screenshot " + quote(shot),
+                 dir, "resized");
+  expectCleanRun(r);
+  const nlohmann::json resized = lastJson(r.out);
+  EXPECT_EQ(resized["size"], nlohmann::json({72, 40}));
+  EXPECT_GT(still["pipelines_built"].get<int>(), 0);
+  EXPECT_EQ(resized["pipelines_built"], still["pipelines_built"]);
+  expectMatchesRender(dir, mesh, resized, shot, "resized-render");
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +

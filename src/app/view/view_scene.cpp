@@ -192,13 +192,17 @@ void ViewScene::applyState(ViewState& state) {
                        render::finestStep(settings_.camera.eye, share_.wholeBounds)});
   settings_.dt = state.dt;
   if (!renderer_ || state.width != settings_.width || state.height != settings_.height) {
+    // A new size needs new lists and images, not new pipelines: the next renderer takes over
+    // this one's (compiling them again cost seconds per resize on lavapipe).
+    std::shared_ptr<render::PassCache> passes = renderer_ ? renderer_->passes() : nullptr;
     renderer_.reset();
     compositor_.reset();
     settings_.width = state.width;
     settings_.height = state.height;
     compositor_ = std::make_unique<comp::DeepCompositor>(*ctx_, coll_.communicator(), state.width,
                                                          state.height, job_.lists);
-    renderer_ = std::make_unique<render::Renderer>(*ctx_, *gpu_, *compositor_);
+    renderer_ = std::make_unique<render::Renderer>(*ctx_, *gpu_, *compositor_, passes);
+    if (passes && renderer_->passes() != passes) retiredPipelines_ += passes->pipelinesBuilt();
   }
 }
 

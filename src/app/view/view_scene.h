@@ -50,6 +50,10 @@ class ViewScene {
 
   const vk::Context& context() const { return *ctx_; }
   const render::GpuScene& gpu() const { return *gpu_; }
+  // Pipelines built for this scene's frames so far (a resize builds none).
+  uint64_t pipelinesBuilt() const {
+    return retiredPipelines_ + (renderer_ ? renderer_->passes()->pipelinesBuilt() : 0);
+  }
   const FieldInfo& field() const { return field_; }
   const render::RenderSettings& settings() const { return settings_; }
   // Steps whose scalars a prefetch had loaded when they were shown, and what loading the steps
@@ -84,6 +88,7 @@ class ViewScene {
   double scalarWaitMs_ = 0, scalarLoadMs_ = 0;
   std::unique_ptr<comp::DeepCompositor> compositor_;
   std::unique_ptr<render::Renderer> renderer_;
+  uint64_t retiredPipelines_ = 0;  // built by renderers whose pipelines no later one took over
   render::RenderSettings settings_;
   FieldInfo field_;
   std::vector<std::optional<FieldInfo>> fields_;  // choices_.fields', once selected

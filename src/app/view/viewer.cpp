@@ -318,6 +318,7 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["fragments_per_pixel"] = fragmentsPerPixel_;
   j["presented"] = presenter_->presented();
   j["swapchain_rebuilds"] = presenter_->swapchainRebuilds();
+  j["pipelines_built"] = scene_->pipelinesBuilt();
   j["validation_errors"] = errors;
   j["home"] = {{"eye", {home.eye.x, home.eye.y, home.eye.z}},
                {"at", {home.at.x, home.at.y, home.at.z}}};
