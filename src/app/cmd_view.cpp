@@ -50,6 +50,9 @@ void registerView(CLI::App& app) {
   cmd->add_option("--fps", opts->fps,
                   "While playing, show at most this many time steps a second (default: a step a "
                   "frame, as fast as frames come)");
+  cmd->add_option("--interactive-scale", opts->interactiveScale,
+                  "While the camera moves, render at 1/N of the window's size, shown enlarged "
+                  "(default 2; 1: always full size)");
   cmd->add_flag_callback(
       "--help-controls",
       [] {

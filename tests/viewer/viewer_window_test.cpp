@@ -411,6 +411,47 @@ TEST(ViewerHeadless, ResizingBuildsNoPipelines) {
   expectMatchesRender(dir, mesh, resized, shot, "resized-render");
 }
 
+// While the camera moves, frames render at half size; the first frame without motion, a
+// screenshot's frame and the last frame are full size (a session that ends moving shows its last
+// view once more, full size), so what is saved is always render's image.
+TEST(ViewerHeadless, MovingFramesRenderSmallAndTheLastIsFull) {
+  const std::string dir = outputDir("ViewerHeadless.Moving");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = headlessView(mesh, "96x72");
+  struct Session {
+    const char* script;
+    const char* extra;
+    int frames, reduced;
+  };
+  const Session sessions[] = {
+      {"drag left 30 10 2\nframe\nquit\n", "", 2, 1},  // ends moving: one more, full size
+      {"drag left 30 10 2\nframe\nframe\nquit\n", "", 2, 1},
+      {"drag left 30 10 2\nframe\nquit\n", "--interactive-scale 1 ", 1, 0},
+      {"drag left 30 10 2\nscreenshot \nframe\nquit\n", "", 1, 0},
+      {"scroll 2\nframe\nkey up\nframe\nquit\n", "--interactive-scale 3 ", 2, 1}};
+  std::vector<scene::Image> shots;
+  int n = 0;
+  for (const Session& s : sessions) {
+    const std::string tag = "moving" + std::to_string(++n), shot = dir + "/" + tag + ".png";
+    std::string script = s.script;
+    const size_t at = script.find("screenshot \n");
+    if (at != std::string::npos) script.replace(at, 12, "screenshot " + shot + "\n");
+    CommandResult r =
+        runCommand(view + s.extra + "--script " + quote(writeFile(dir, tag + ".txt", script)) +
+                       " --screenshot " + quote(shot),
+                   dir, tag);
+    expectCleanRun(r);
+    const nlohmann::json j = lastJson(r.out);
+    EXPECT_EQ(j["frames"], s.frames) << tag << " " << j.dump();
+    EXPECT_EQ(j["reduced_frames"], s.reduced) << tag << " " << j.dump();
+    shots.push_back(expectMatchesRender(dir, mesh, j, shot, tag + "-render"));
+  }
+  // The same view at the end whether the frames on the way were small or not.
+  EXPECT_EQ(shots[0].pixels, shots[1].pixels);
+  EXPECT_EQ(shots[0].pixels, shots[2].pixels);
+  EXPECT_EQ(shots[0].pixels, shots[3].pixels);
+}
+
 TEST(ViewerHeadless, NoDisplayIsAOneLineError) {
   const std::string dir = outputDir("ViewerHeadless.NoDisplay");
   CommandResult r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + shellmarch() + " view " +
@@ -436,6 +477,7 @@ TEST(ViewerHeadless, BadInputIsOneLineNamingTheOption) {
       {"--headless --frames 1 --play --fps 0", "--fps: 0 is not a positive number"},
       {"--headless --frames 1 --play --fps -2", "--fps: -2 is not a positive number"},
       {"--headless --frames 1 --play --fps nan", "--fps: nan is not a positive number"},
+      {"--headless --frames 1 --interactive-scale 0", "--interactive-scale: 0 is not in 1 .. 16"},
   };
   for (const auto& [args, want] : cases) {
     CommandResult r = runCommand(shellmarch() + " view " + quote(mesh) + " " + args, dir, "view");

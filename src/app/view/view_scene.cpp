@@ -1,6 +1,8 @@
 #include "app/view/view_scene.h"
 
 #include <algorithm>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
@@ -191,24 +193,35 @@ void ViewScene::applyState(ViewState& state) {
   state.dt = std::max({state.dt, finestInteractiveStep_,
                        render::finestStep(settings_.camera.eye, share_.wholeBounds)});
   settings_.dt = state.dt;
-  if (!renderer_ || state.width != settings_.width || state.height != settings_.height) {
-    // A new size needs new lists and images, not new pipelines: the next renderer takes over
-    // this one's (compiling them again cost seconds per resize on lavapipe).
-    std::shared_ptr<render::PassCache> passes = renderer_ ? renderer_->passes() : nullptr;
-    renderer_.reset();
-    compositor_.reset();
-    settings_.width = state.width;
-    settings_.height = state.height;
-    compositor_ = std::make_unique<comp::DeepCompositor>(*ctx_, coll_.communicator(), state.width,
-                                                         state.height, job_.lists);
-    renderer_ = std::make_unique<render::Renderer>(*ctx_, *gpu_, *compositor_, passes);
-    if (passes && renderer_->passes() != passes) retiredPipelines_ += passes->pipelinesBuilt();
-  }
+  settings_.width = renderWidth(state);
+  settings_.height = renderHeight(state);
+}
+
+// A new size needs new lists and images, not new pipelines: its renderer takes over the others'
+// (compiling them again cost seconds per resize on lavapipe). Two sizes are kept, so that
+// interaction at a reduced size and the still frames between build nothing.
+render::Renderer& ViewScene::target(int width, int height) {
+  for (size_t i = 0; i < targets_.size(); ++i)
+    if (targets_[i].width == width && targets_[i].height == height) {
+      std::rotate(targets_.begin() + long(i), targets_.begin() + long(i) + 1, targets_.end());
+      return *targets_.back().renderer;
+    }
+  if (targets_.size() >= 2) targets_.erase(targets_.begin());
+  Target t;
+  t.width = width;
+  t.height = height;
+  t.compositor = std::make_unique<comp::DeepCompositor>(*ctx_, coll_.communicator(), width, height,
+                                                        job_.lists);
+  t.renderer = std::make_unique<render::Renderer>(*ctx_, *gpu_, *t.compositor, passes_);
+  if (passes_ && t.renderer->passes() != passes_) retiredPipelines_ += passes_->pipelinesBuilt();
+  passes_ = t.renderer->passes();
+  targets_.push_back(std::move(t));
+  return *targets_.back().renderer;
 }
 
 render::FrameResult ViewScene::render(ViewState& state, std::vector<glm::vec4> reuse) {
   applyState(state);
-  return renderer_->render(settings_, std::move(reuse));
+  return target(settings_.width, settings_.height).render(settings_, std::move(reuse));
 }
 
 }  // namespace sm::view

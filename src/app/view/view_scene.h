@@ -1,6 +1,7 @@
 // One rank's side of the viewer: its share of the data on the GPU, and the compositor and renderer
-// for the current image size. render() first makes the GPU side match the broadcast state: a new
-// time step or field uploads scalars only, a new size rebuilds compositor and renderer, a new
+// for the image sizes in use. render() first makes the GPU side match the broadcast state: a new
+// time step or field uploads scalars only, a new size builds a compositor and renderer (sharing
+// the pipelines; the last two sizes are kept, the window's and the interactive one's), a new
 // colour map, opacity or step only changes the frame's settings. While the state plays, the
 // next step is read and uploaded on a thread of its own while the frame renders.
 //
@@ -52,7 +53,7 @@ class ViewScene {
   const render::GpuScene& gpu() const { return *gpu_; }
   // Pipelines built for this scene's frames so far (a resize builds none).
   uint64_t pipelinesBuilt() const {
-    return retiredPipelines_ + (renderer_ ? renderer_->passes()->pipelinesBuilt() : 0);
+    return retiredPipelines_ + (targets_.empty() ? 0 : passes_->pipelinesBuilt());
   }
   const FieldInfo& field() const { return field_; }
   const render::RenderSettings& settings() const { return settings_; }
@@ -86,8 +87,15 @@ class ViewScene {
   std::unique_ptr<app::StepLoads> loads_;  // after gpu_: its prefetch thread writes there
   uint64_t prefetchedSteps_ = 0;
   double scalarWaitMs_ = 0, scalarLoadMs_ = 0;
-  std::unique_ptr<comp::DeepCompositor> compositor_;
-  std::unique_ptr<render::Renderer> renderer_;
+  // A compositor and renderer for one image size.
+  struct Target {
+    int width = 0, height = 0;
+    std::unique_ptr<comp::DeepCompositor> compositor;
+    std::unique_ptr<render::Renderer> renderer;
+  };
+  render::Renderer& target(int width, int height);
+  std::vector<Target> targets_;                // the most recently used last
+  std::shared_ptr<render::PassCache> passes_;  // the pipelines every target's renderer shares
   uint64_t retiredPipelines_ = 0;  // built by renderers whose pipelines no later one took over
   render::RenderSettings settings_;
   FieldInfo field_;

@@ -3,6 +3,7 @@
 // same frame and a quit ends every rank at the same frame.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -22,12 +23,13 @@ struct ViewState {
   double dt = 0.01;   // sample step along rays
   int32_t width = 0;  // image size = the window's framebuffer size
   int32_t height = 0;
-  int32_t step = 0;      // time step; ranks wrap it into the field's steps
-  int32_t field = 0;     // index into ViewChoices::fields
-  int32_t colormap = 0;  // index into ViewChoices::colormaps
-  uint32_t playing = 0;  // 1: each frame shows the next step (rank 0 advances it)
-  uint32_t frame = 0;    // frames rendered before this one
-  uint32_t quit = 0;     // 1: no frame; every rank leaves the loop
+  int32_t renderScale = 1;  // > 1: this frame renders at 1/renderScale of the size (interaction)
+  int32_t step = 0;         // time step; ranks wrap it into the field's steps
+  int32_t field = 0;        // index into ViewChoices::fields
+  int32_t colormap = 0;     // index into ViewChoices::colormaps
+  uint32_t playing = 0;     // 1: each frame shows the next step (rank 0 advances it)
+  uint32_t frame = 0;       // frames rendered before this one
+  uint32_t quit = 0;        // 1: no frame; every rank leaves the loop
   // The view cut (x key): a clip plane through cutPoint keeping the side cutNormal points to, on
   // top of the job's --clip planes.
   uint32_t cut = 0;
@@ -44,6 +46,14 @@ struct ViewState {
   }
 };
 static_assert(std::is_trivially_copyable_v<ViewState>, "broadcast as bytes");
+
+// The size a frame renders at: the window's, or a reduced one while the camera moves.
+inline int32_t renderWidth(const ViewState& s) {
+  return std::max<int32_t>(1, s.width / std::max<int32_t>(1, s.renderScale));
+}
+inline int32_t renderHeight(const ViewState& s) {
+  return std::max<int32_t>(1, s.height / std::max<int32_t>(1, s.renderScale));
+}
 
 // What field and colour-map indices refer to; the same on every rank.
 struct ViewChoices {

@@ -58,6 +58,7 @@ class Viewer {
  private:
   bool root() const { return coll_.rank() == 0; }
   void gatherInput();
+  void chooseRenderScale(const scene::Camera& before);
   bool paceStep(int32_t step);
   void applyEvents(std::vector<InputEvent>& events);
   void show(render::FrameResult& frame, uint64_t fragments);
@@ -87,6 +88,9 @@ class Viewer {
   std::vector<glm::vec4> sparePixels_;  // the frame before's, handed to the next render
   int lastWidth_ = 0, lastHeight_ = 0;
   uint32_t framesShown_ = 0;
+  uint32_t reducedFrames_ = 0;  // frames rendered at a reduced size while the camera moved
+  ViewState shownState_;        // the state of the frame shown last
+  bool quitPending_ = false;    // quit after the full-size frame that replaces a reduced last one
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
   bool legend_ = false;  // drawn into the image, so into screenshots too (render --legend's)
@@ -102,6 +106,8 @@ class Viewer {
 Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll)
     : job_(job), options_(options), coll_(coll), overlay_(options.overlay), legend_(job.legend) {
   if (options.frames < 0) throw Error("--frames: ", options.frames, " is negative");
+  if (options.interactiveScale < 1 || options.interactiveScale > 16)
+    throw Error("--interactive-scale: ", options.interactiveScale, " is not in 1 .. 16");
   if (!(options.fps >= 0) || !std::isfinite(options.fps))
     throw Error("--fps: ", options.fps, " is not a positive number of steps a second");
   if (options.headless && options.frames == 0 && options.script.empty())
@@ -149,6 +155,7 @@ void Viewer::run() {
 }
 
 void Viewer::gatherInput() {
+  const scene::Camera before = state_.camera();
   std::vector<InputEvent> events;
   window_->poll(events);
   const bool scripted = script_.nextFrame(events);
@@ -182,6 +189,27 @@ void Viewer::gatherInput() {
   } else if (state_.step != step || !stepSince_) {
     stepSince_ = Clock::now();
   }
+  chooseRenderScale(before);
+}
+
+// While the camera moves (a drag, the wheel), frames render small, and the first frame without
+// motion at full size. A screenshot is always full size, and so is the last frame: a session that
+// ends on a reduced frame shows that frame once more at full size before it quits.
+void Viewer::chooseRenderScale(const scene::Camera& before) {
+  const scene::Camera now = state_.camera();
+  const bool moved = now.eye != before.eye || now.at != before.at || now.up != before.up ||
+                     now.fovyDeg != before.fovyDeg;
+  if (quitPending_) state_.quit = 1;
+  if (state_.quit && framesShown_ > 0 && shownState_.renderScale > 1) {
+    const uint32_t frame = state_.frame;
+    state_ = shownState_;
+    state_.frame = frame;
+    state_.quit = 0;
+    quitPending_ = true;
+  }
+  state_.renderScale = moved && !state_.quit && !quitPending_ && local_.screenshots.empty()
+                           ? options_.interactiveScale
+                           : 1;
 }
 
 // With --fps F a step stays on screen 1/F s at least before play moves on. The wait keeps taking
@@ -220,13 +248,35 @@ void Viewer::applyEvents(std::vector<InputEvent>& events) {
   local_.toggleOverlay = local_.toggleLegend = local_.help = false;
 }
 
+// A reduced frame, enlarged to the window's size by repeating each pixel.
+std::vector<glm::vec4> enlarged(const std::vector<glm::vec4>& small, int smallWidth,
+                                int smallHeight, int width, int height) {
+  std::vector<glm::vec4> out(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y) {
+    const int sy = std::min(smallHeight - 1, int(int64_t(y) * smallHeight / height));
+    for (int x = 0; x < width; ++x) {
+      const int sx = std::min(smallWidth - 1, int(int64_t(x) * smallWidth / width));
+      out[size_t(y) * width + x] = small[size_t(sy) * smallWidth + sx];
+    }
+  }
+  return out;
+}
+
 void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
+  uint64_t covered = 0;
+  for (const glm::vec4& p : frame.pixels) covered += p.a > 0.0f;
+  shownState_ = state_;
   sparePixels_ = std::move(lastPixels_);  // the next frame's storage
-  lastPixels_ = std::move(frame.pixels);
   lastWidth_ = state_.width;
   lastHeight_ = state_.height;
-  uint64_t covered = 0;
-  for (const glm::vec4& p : lastPixels_) covered += p.a > 0.0f;
+  if (state_.renderScale > 1) {
+    ++reducedFrames_;
+    lastPixels_ =
+        enlarged(frame.pixels, renderWidth(state_), renderHeight(state_), lastWidth_, lastHeight_);
+    sparePixels_ = std::move(frame.pixels);
+  } else {
+    lastPixels_ = std::move(frame.pixels);
+  }
   if (legend_) {
     scene::Image img;
     img.width = lastWidth_;
@@ -261,6 +311,7 @@ std::vector<std::string> Viewer::overlayLines() const {
                                       : std::string(" PLAYING  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
+  if (state_.renderScale > 1) lines.push_back(fmt("MOVING: 1/%g SIZE", double(state_.renderScale)));
   if (state_.cut) {
     const auto short3 = [](const glm::dvec3& v, const char* f) {
       return fmt(f, v.x) + "," + fmt(f, v.y) + "," + fmt(f, v.z);
@@ -295,6 +346,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   const std::string colormap = scene_->choices().colormaps[size_t(state_.colormap)];
   nlohmann::json j;
   j["frames"] = framesShown_;
+  j["reduced_frames"] = reducedFrames_;
+  j["interactive_scale"] = options_.interactiveScale;
   j["ranks"] = coll_.size();
   j["size"] = {lastWidth_, lastHeight_};
   j["eye"] = {state_.eye.x, state_.eye.y, state_.eye.z};

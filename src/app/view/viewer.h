@@ -18,6 +18,9 @@ struct ViewOptions {
   bool overlay = true;
   bool play = false;  // start playing: a step a frame (space pauses)
   double fps = 0;     // > 0: while playing, at most this many steps a second
+  // > 1: frames whose input moves the camera render at 1/interactiveScale of the window's size
+  // (shown enlarged), so that dragging keeps up; the frames after, and screenshots, at full size.
+  int interactiveScale = 2;
 };
 
 void runView(const app::RenderJob& job, const ViewOptions& options, app::Collectives& coll);
