@@ -92,47 +92,23 @@ bool PassCache::serves(const GpuScene& scene, const comp::DeepCompositor& compos
 }
 
 CountStorePass& PassCache::traversal() {
-  if (!traversal_) {
-    traversal_ = std::make_unique<CountStorePass>(ctx_, scene_, lists_, PassOptions{},
-                                                  CountStoreKind::Traversal);
-    ++built_;
-  }
-  return *traversal_;
+  return ensure(traversal_, PassOptions{}, CountStoreKind::Traversal);
 }
 
 CountStorePass& PassCache::cached(PassOptions options) {
-  auto& p = cached_[options.index()];
-  if (!p) {
-    p = std::make_unique<CountStorePass>(ctx_, scene_, lists_, options, CountStoreKind::Cached);
-    ++built_;
-  }
-  return *p;
+  return ensure(cached_[options.index()], options, CountStoreKind::Cached);
 }
 
 StoreCachedPass& PassCache::storeCached() {
-  if (!storeCached_) {
-    storeCached_ = std::make_unique<StoreCachedPass>(ctx_, scene_, lists_);
-    ++built_;
-  }
-  return *storeCached_;
+  return ensure(storeCached_);
 }
 
 MarchPass& PassCache::march(PassOptions options) {
-  auto& p = march_[options.index()];
-  if (!p) {
-    p = std::make_unique<MarchPass>(ctx_, scene_, lists_, options);
-    ++built_;
-  }
-  return *p;
+  return ensure(march_[options.index()], options);
 }
 
 FusedPass& PassCache::fused(PassOptions options) {
-  auto& p = fused_[options.index()];
-  if (!p) {
-    p = std::make_unique<FusedPass>(ctx_, scene_, lists_, options);
-    ++built_;
-  }
-  return *p;
+  return ensure(fused_[options.index()], options);
 }
 
 }  // namespace sm::render

@@ -113,6 +113,16 @@ class PassCache {
   uint64_t pipelinesBuilt() const { return built_; }
 
  private:
+  // The pass in `slot`, built from (ctx, scene, lists, args...) the first time.
+  template <class Pass, class... Args>
+  Pass& ensure(std::unique_ptr<Pass>& slot, Args... args) {
+    if (!slot) {
+      slot = std::make_unique<Pass>(ctx_, scene_, lists_, args...);
+      ++built_;
+    }
+    return *slot;
+  }
+
   const vk::Context& ctx_;
   const GpuScene& scene_;
   ListConstants lists_;

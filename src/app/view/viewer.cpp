@@ -248,10 +248,11 @@ void Viewer::applyEvents(std::vector<InputEvent>& events) {
   local_.toggleOverlay = local_.toggleLegend = local_.help = false;
 }
 
-// A reduced frame, enlarged to the window's size by repeating each pixel.
-std::vector<glm::vec4> enlarged(const std::vector<glm::vec4>& small, int smallWidth,
-                                int smallHeight, int width, int height) {
-  std::vector<glm::vec4> out(size_t(width) * size_t(height));
+// A reduced frame, enlarged into `out` (whose storage is reused) to the window's size by repeating
+// each pixel.
+void enlarge(const std::vector<glm::vec4>& small, int smallWidth, int smallHeight, int width,
+             int height, std::vector<glm::vec4>& out) {
+  out.resize(size_t(width) * size_t(height));
   for (int y = 0; y < height; ++y) {
     const int sy = std::min(smallHeight - 1, int(int64_t(y) * smallHeight / height));
     for (int x = 0; x < width; ++x) {
@@ -259,7 +260,6 @@ std::vector<glm::vec4> enlarged(const std::vector<glm::vec4>& small, int smallWi
       out[size_t(y) * width + x] = small[size_t(sy) * smallWidth + sx];
     }
   }
-  return out;
 }
 
 void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
@@ -270,9 +270,12 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
   lastWidth_ = state_.width;
   lastHeight_ = state_.height;
   if (state_.renderScale > 1) {
+    // Into the frame before's storage; the small frame's becomes the next frame's: moving
+    // allocates nothing frame after frame.
     ++reducedFrames_;
-    lastPixels_ =
-        enlarged(frame.pixels, renderWidth(state_), renderHeight(state_), lastWidth_, lastHeight_);
+    lastPixels_ = std::move(sparePixels_);
+    enlarge(frame.pixels, renderWidth(state_), renderHeight(state_), lastWidth_, lastHeight_,
+            lastPixels_);
     sparePixels_ = std::move(frame.pixels);
   } else {
     lastPixels_ = std::move(frame.pixels);
