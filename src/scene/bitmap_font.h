@@ -1,5 +1,5 @@
 // A 5x7 bitmap font for text drawn into images on the CPU: the viewer's overlay, the colour legend
-// of `render --legend`, the benchmark's plots. Letters show in upper case.
+// of `render --legend`, the benchmark's plots. Printable ASCII, upper and lower case.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +11,8 @@ namespace sm::scene {
 constexpr int kGlyphWidth = 5, kGlyphHeight = 7;
 constexpr int kGlyphAdvance = 6;  // a character's width and the gap after it, in font dots
 
-// The 7 rows of a character's glyph (bit 4 = leftmost dot); '?' for characters the font lacks,
-// lower case mapped to upper case.
+// The 7 rows of a character's glyph (bit 4 = leftmost dot); '?' for characters outside printable
+// ASCII (control characters, UTF-8 bytes).
 const uint8_t* glyph(char c);
 // Pixels from the first dot of `text` to its last, at `scale` pixels per dot.
 int textWidth(std::string_view text, int scale);

@@ -3,6 +3,7 @@
 // and its labels move the bar to make room for them.
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 #include <utility>
 
@@ -96,7 +97,7 @@ TEST(Legend, InkIsWhiteOnDarkAndBlackOnLight) {
   }
   // The title's dots at least, besides the frame, ticks and labels.
   int titleDots = 0;
-  for (int r = 0; r < kGlyphHeight; ++r) titleDots += __builtin_popcount(glyph('T')[r]);
+  for (int r = 0; r < kGlyphHeight; ++r) titleDots += __builtin_popcount(glyph('t')[r]);
   EXPECT_GT(ink, titleDots);
 }
 
@@ -135,6 +136,39 @@ TEST(BitmapFont, TextWidthAndDotsFollowTheGlyphs) {
   for (char c : {'1', '.'})
     for (int r = 0; r < kGlyphHeight; ++r) expected += __builtin_popcount(glyph(c)[r]);
   EXPECT_EQ(dots, expected * 9);
+}
+
+// Every printable ASCII character has a glyph of its own, so that a field's name reads as the file
+// spells it ("p" and "P" are different fields to a solver); anything else shows as '?'.
+TEST(BitmapFont, EveryPrintableCharacterHasItsOwnGlyph) {
+  auto rows = [](char c) {
+    return std::string(reinterpret_cast<const char*>(glyph(c)), kGlyphHeight);
+  };
+  std::set<std::string> seen;
+  for (char c = ' '; c <= '~'; ++c) {
+    const std::string g = rows(c);
+    EXPECT_TRUE(seen.insert(g).second) << "'" << c << "' looks like another character";
+    const bool blank = g == std::string(kGlyphHeight, '\0');
+    EXPECT_EQ(blank, c == ' ') << "'" << c << "'";
+    for (char r : g) EXPECT_EQ(uint8_t(r) & ~0x1Fu, 0u) << "'" << c << "' is wider than the font";
+  }
+  for (char c = 'a'; c <= 'z'; ++c) EXPECT_NE(rows(c), rows(char(c - 'a' + 'A'))) << c;
+  for (char c : {'\n', '\t', '\x7f', '\xc3', '\xa9'})
+    EXPECT_EQ(rows(c), rows('?')) << int(uint8_t(c));
+}
+
+TEST(Legend, TheTitleKeepsItsCase) {
+  const TransferFunction tf = viridis(0.0, 1.0);
+  Image lower = filled(320, 240), upper = filled(320, 240);
+  drawLegend(lower, tf, "p", glm::vec3(0.0f));
+  drawLegend(upper, tf, "P", glm::vec3(0.0f));
+  int differ = 0;
+  for (size_t i = 0; i < lower.pixels.size(); ++i) differ += lower.pixels[i] != upper.pixels[i];
+  const LegendLayout l = legendLayout(320, 240, tf, "p");
+  int expected = 0;  // the dots where the two glyphs differ, at the legend's scale
+  for (int r = 0; r < kGlyphHeight; ++r)
+    expected += __builtin_popcount(glyph('p')[r] ^ glyph('P')[r]);
+  EXPECT_EQ(differ, expected * l.scale * l.scale);
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ struct Canvas {
         if (d2 <= r * r && (!ring || d2 >= (r - 2) * (r - 2))) set(cx + x, cy + y, c);
       }
   }
-  // Text in the 5x7 font (upper case), `scale` pixels per dot, top-left at (x, y).
+  // Text in the 5x7 font, `scale` pixels per dot, top-left at (x, y).
   void text(int x, int y, const std::string& s, glm::vec4 c, int scale = 1) {
     scene::drawText(s, x, y, scale, [&](int px, int py) { set(px, py, c); });
   }
@@ -62,7 +62,7 @@ struct Canvas {
 
 std::string powerLabel(int e) {
   char buf[16];
-  std::snprintf(buf, sizeof buf, "1E%d", e);
+  std::snprintf(buf, sizeof buf, "1e%d", e);
   return buf;
 }
 
@@ -102,7 +102,7 @@ void drawPanel(Canvas& cv, int ox, int oy, const PlotPanel& p) {
   cv.line(ox + kLeft, top + h, ox + kLeft + w, top + h, kInk);
   cv.line(ox + kLeft, top, ox + kLeft, top + h, kInk);
   cv.text(ox + kLeft, oy + 10, p.title, kInk, 2);
-  cv.text(ox + kLeft + w / 2 - 60, top + h + 22, "MS PER FRAME", kInk);
+  cv.text(ox + kLeft + w / 2 - 60, top + h + 22, "ms per frame", kInk);
   cv.text(ox + 8, top - 14, "RMSE", kInk);
   const std::vector<size_t> front = paretoFront(p.points);
   for (size_t k = 1; k < front.size(); ++k) {

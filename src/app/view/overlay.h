@@ -1,6 +1,6 @@
 // The viewer's overlay: lines of text in the 5x7 bitmap font (scene/bitmap_font.h), drawn on the
 // CPU into the 8-bit image just before it is copied to the swapchain (it never reaches screenshots,
-// which stay comparable with `shellmarch render`). Letters show in upper case.
+// which stay comparable with `shellmarch render`).
 #pragma once
 
 #include <cstdint>
