@@ -43,7 +43,12 @@ const uint kNoInterval = 0xFFFFFFFFu;
 
 TfCache emptyTfCache() { return TfCache(kNoInterval, vec4(0.0), vec4(0.0)); }
 
+// The transfer function maps log2(s) (tfLo and tfScale are then in log2 units): a specialisation,
+// so that linear frames pay nothing for it. Values <= 0 fall below the (positive) range.
+layout(constant_id = 15) const bool kLogScale = false;
+
 vec4 transferLookupCached(FrameParams fp, float s, inout TfCache cache) {
+  if (kLogScale) s = log2(max(s, 1.17549435e-38));
   float x = clamp((s - fp.tfLo) * fp.tfScale, 0.0, 1.0) * float(fp.tfEntries - 1u);
   uint i = min(floorIndex(x), fp.tfEntries - 1u);
   // Decided for the SIMD batch (a vote), and then every lane reads its entries: a lane-by-lane

@@ -59,7 +59,7 @@ struct FrameParams {
   // Sampling and transfer function.
   float dt;
   float tfLo;
-  float tfScale;  // 1 / (hi - lo)
+  float tfScale;  // 1 / (hi - lo); on a log scale tfLo = log2(lo), tfScale = 1 / log2(hi / lo)
   uint tfEntries;
   float sigmaScale;        // opacityScale / unitDistance
   float earlyTermination;  // stop once accumulated opacity reaches this

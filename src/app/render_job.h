@@ -43,6 +43,7 @@ struct RenderJob {
   // --opacity: replaces the colour map's opacity (for the field rendered; in the viewer, the
   // first field shown)
   std::vector<scene::OpacityPoint> opacityPoints;
+  bool logScale = false;  // --log-scale (in the viewer, for the fields whose range is positive)
   bool allTypePipelines = false;
   std::string l2Heatmap;   // also composite single-fragment; write the L2 difference heatmap here
   std::string heatmaps;    // prefix: fragment-count heatmaps per rank and combined (PNG)

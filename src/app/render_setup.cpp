@@ -73,6 +73,14 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.transferFunction = scene::makeTransferFunction(job.colormap);
   s.transferFunction.lo = range.first;
   s.transferFunction.hi = range.second;
+  if (job.logScale) {
+    s.transferFunction.scale = scene::ScalarScale::Log;
+    if (!(range.first > 0))
+      throw Error("--log-scale: field '", job.field, "' has the range ", range.first, " .. ",
+                  range.second,
+                  ", and a log scale needs a positive one: give --range LO,HI with "
+                  "0 < LO < HI");
+  }
   if (!job.opacityPoints.empty())
     scene::setOpacityPoints(s.transferFunction, job.opacityPoints, "--opacity");
   s.transferFunction.opacityScale = job.opacityScale;

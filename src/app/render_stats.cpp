@@ -53,6 +53,7 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   for (const scene::ClipPlane& p : s.clipPlanes)
     json_["clip_planes"].push_back({{"point", {p.point.x, p.point.y, p.point.z}},
                                     {"normal", {p.normal.x, p.normal.y, p.normal.z}}});
+  json_["log_scale"] = s.transferFunction.scale == scene::ScalarScale::Log;
   json_["opacity_points"] = nlohmann::json::array();
   for (const scene::OpacityPoint& p : job_.opacityPoints)
     json_["opacity_points"].push_back({p.value, p.opacity});

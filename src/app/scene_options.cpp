@@ -36,6 +36,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--opacity", t["--opacity"],
                   "Opacity map as VALUE:OPACITY points in data values, linear between them "
                   "(e.g. 2:0,3:0.8,6:0.8); default: the colour map's (a ramp over the range)");
+  cmd->add_flag("--log-scale", raw.logScale,
+                "Map the field's logarithm onto the colour and opacity maps (a positive range; "
+                "for fields that span decades)");
   cmd->add_option("--opacity-scale", job.opacityScale, "Multiplies the opacity map (default 1)");
   cmd->add_option("--unit-distance", t["--unit-distance"],
                   "Length over which opacity 1 gives optical depth 1 (default: diagonal / 8)");
@@ -100,6 +103,7 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   if (!get("--shading-params").empty())
     job.shading = parseShading("--shading-params", get("--shading-params"));
   if (raw.shading) job.shading.enabled = true;
+  job.logScale = raw.logScale;
   job.compact = !raw.plain;
   job.clipPlanes.clear();
   for (const std::string& c : raw.clip) job.clipPlanes.push_back(parseClipPlane("--clip", c));

@@ -18,6 +18,7 @@ struct SceneOptionText {
   std::vector<std::string> clip;            // --clip, once per plane
   bool plain = false;
   bool shading = false;
+  bool logScale = false;
 };
 
 // Registers the shared options on `cmd`, in render's order; `timeHelp` describes --time, whose

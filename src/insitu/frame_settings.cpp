@@ -67,6 +67,7 @@ scene::TransferFunction transferFunction(const api::RenderSettings& s) {
   if (!(s.opacityScale >= 0 && std::isfinite(s.opacityScale)))
     throw Error("render: opacityScale must be finite and not negative, not ", s.opacityScale);
   tf.opacityScale = s.opacityScale;
+  tf.scale = s.logScale ? scene::ScalarScale::Log : scene::ScalarScale::Linear;
   return tf;
 }
 
@@ -116,7 +117,11 @@ uint64_t settingsDigest(const api::RenderSettings& s) {
   h.span(std::span<const std::array<float, 4>>(s.table));
   h.pod(s.range.has_value());
   if (s.range) h.pod(*s.range);
-  h.pod(s.opacityScale).pod(s.unitDistance).pod(s.sampleDistance).pod(s.earlyTermination);
+  h.pod(s.logScale)
+      .pod(s.opacityScale)
+      .pod(s.unitDistance)
+      .pod(s.sampleDistance)
+      .pod(s.earlyTermination);
   h.pod(s.clipPlanes.size());
   for (const api::ClipPlane& c : s.clipPlanes) h.pod(c.point).pod(c.normal);
   return h.digest();

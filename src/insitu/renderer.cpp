@@ -170,6 +170,8 @@ void Renderer::Impl::render(const RenderSettings& s, Image& into) {
   if (!(lo <= hi)) lo = 0, hi = 1;  // no finite value anywhere: any range renders transparent
   rs.transferFunction.lo = lo;
   rs.transferFunction.hi = hi;
+  // Every rank has the same range: they refuse it alike.
+  sm::scene::checkScale(rs.transferFunction, "render: logScale");
   sm::render::FrameResult result;
   group.runOrAbort([&] { result = renderer->render(rs, std::move(pixels)); });
   frameMs = timer.seconds() * 1e3;

@@ -29,8 +29,12 @@ int64_t firstSample(double tIn, double dt) {
 }
 
 double tfCoordinate(const scene::TransferFunction& tf, double s) {
-  double x = tf.hi > tf.lo ? (s - tf.lo) / (tf.hi - tf.lo) : 0.5;
-  return std::clamp(x, 0.0, 1.0);
+  if (!(tf.hi > tf.lo)) return 0.5;
+  if (tf.scale == scene::ScalarScale::Log) {
+    if (!(s > 0.0)) return 0.0;
+    return std::clamp((std::log10(s) - std::log10(tf.lo)) / std::log10(tf.hi / tf.lo), 0.0, 1.0);
+  }
+  return std::clamp((s - tf.lo) / (tf.hi - tf.lo), 0.0, 1.0);
 }
 
 }  // namespace

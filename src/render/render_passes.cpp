@@ -36,6 +36,7 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
           {12, options.elementExact ? 1u : 0u},
           {13, options.shading ? 1u : 0u},
           {14, options.clip ? 1u : 0u},
+          {15, options.logScale ? 1u : 0u},
           {100, lists.mode},
           {101, lists.encoding}};
 }

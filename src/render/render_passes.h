@@ -33,9 +33,11 @@ struct PassOptions {
   bool shading = false;
   bool allTypes = false;  // benchmarks: as if every element type were present (no type folding)
   bool clip = false;      // the frame has clip planes
-  static constexpr int kCombinations = 16;
+  bool logScale = false;  // the transfer function maps the scalar's logarithm
+  static constexpr int kCombinations = 32;
   int index() const {
-    return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0) + (clip ? 8 : 0);
+    return (elementExact ? 1 : 0) + (shading ? 2 : 0) + (allTypes ? 4 : 0) + (clip ? 8 : 0) +
+           (logScale ? 16 : 0);
   }
 };
 

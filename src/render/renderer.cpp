@@ -116,7 +116,10 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.width = uint32_t(s.width);
   p.height = uint32_t(s.height);
   p.dt = float(s.dt * scale);
-  if (tf.hi > tf.lo) {
+  if (tf.hi > tf.lo && tf.scale == scene::ScalarScale::Log) {  // the shader maps log2(s)
+    p.tfLo = float(std::log2(tf.lo));
+    p.tfScale = float(1.0 / std::log2(tf.hi / tf.lo));
+  } else if (tf.hi > tf.lo) {
     p.tfLo = float(tf.lo);
     p.tfScale = float(1.0 / (tf.hi - tf.lo));
   } else {  // constant range: every entry of the device's table is the middle (deviceTable)
@@ -159,6 +162,17 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
     p.piHi = float(t.hi);
   }
   return p;
+}
+
+void Renderer::checkScale(const RenderSettings& s) {
+  scene::checkScale(s.transferFunction, "--log-scale");
+  // The pre-integrated tables are built over bins linear in the scalar: decades below the top
+  // one would share a bin or two.
+  if (s.transferFunction.scale == scene::ScalarScale::Log &&
+      s.integration == Integration::ElementExact)
+    throw Error(
+        "--log-scale: element-exact integration pre-integrates the transfer function over "
+        "a linear scalar scale; use --integration sampled with a log scale");
 }
 
 void Renderer::setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const {
@@ -204,14 +218,16 @@ FrameResult Renderer::renderRays(const RenderSettings& settings,
 
 FrameResult Renderer::render(const RenderSettings& s, std::vector<glm::vec4> reuse) {
   auto t0 = std::chrono::steady_clock::now();
+  checkScale(s);
   const std::vector<glm::vec4> table = deviceTable(s.transferFunction);
   if (!transferFunction_.valid() || transferFunction_.size() < table.size() * sizeof(glm::vec4))
     transferFunction_ = vk::Buffer(ctx_, table.size() * sizeof(glm::vec4), vk::kStorageUsage,
                                    vk::MemoryUse::Device, "transfer function");
   transferFunction_.upload(table.data(), table.size() * sizeof(glm::vec4));
   if (s.integration == Integration::ElementExact) updatePreintegration(s);
-  passOptions_ = PassOptions{s.integration == Integration::ElementExact, s.shading.enabled,
-                             s.allTypePipelines, !s.clipPlanes.empty()};
+  passOptions_ =
+      PassOptions{s.integration == Integration::ElementExact, s.shading.enabled, s.allTypePipelines,
+                  !s.clipPlanes.empty(), s.transferFunction.scale == scene::ScalarScale::Log};
   gpu::FrameParams p = frameParams(s);
   FrameResult out;
   const gpu::RenderStats zero{};

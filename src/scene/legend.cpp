@@ -15,9 +15,15 @@ std::string label(double v) {
   return buf;
 }
 
-// hi, middle, lo: top to bottom, as the bar runs.
+// hi, middle, lo: top to bottom, as the bar runs; the middle is the value at the bar's middle
+// (on a log scale, the geometric mean).
 std::array<std::string, 3> labels(const TransferFunction& tf) {
-  return {label(tf.hi), label(0.5 * (tf.lo + tf.hi)), label(tf.lo)};
+  return {label(tf.hi), label(tf.valueAt(0.5)), label(tf.lo)};
+}
+
+// The title as drawn: a log scale says so, since its middle label is the geometric mean.
+std::string shownTitle(const TransferFunction& tf, const std::string& title) {
+  return tf.scale == ScalarScale::Log ? title + " (log)" : title;
 }
 
 // The table's colour at x in [0, 1], interpolated as lookups are (whatever the range).
@@ -45,7 +51,7 @@ LegendLayout legendLayout(int width, int height, const TransferFunction& tf,
   l.barX = width - margin - labelWidth - 2 * gap - l.barWidth - s;
   l.barY = (height - l.barHeight) / 2 + (kGlyphHeight + 2) * s / 2;
   const int titleY = l.barY - s - (kGlyphHeight + 3) * s;
-  const int titleX = std::min(l.barX - s, width - margin - textWidth(title, s));
+  const int titleX = std::min(l.barX - s, width - margin - textWidth(shownTitle(tf, title), s));
   l.left = std::min(l.barX - s, titleX);
   l.top = titleY;
   l.right = width - margin;
@@ -83,7 +89,8 @@ void drawLegend(Image& img, const TransferFunction& tf, const std::string& title
     drawText(text[size_t(k)], right + 2 * gap, ty - kGlyphHeight * s / 2, s,
              [&](int x, int y) { set(x, y, ink); });
   }
-  drawText(title, std::min(l.barX - s, l.right - textWidth(title, s)),
+  const std::string shown = shownTitle(tf, title);
+  drawText(shown, std::min(l.barX - s, l.right - textWidth(shown, s)),
            l.barY - s - (kGlyphHeight + 3) * s, s, [&](int x, int y) { set(x, y, ink); });
 }
 

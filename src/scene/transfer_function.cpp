@@ -13,10 +13,28 @@
 
 namespace sm::scene {
 
+double TransferFunction::coordinate(double s) const {
+  if (!(hi > lo)) return 0.5;
+  if (scale == ScalarScale::Log)  // s <= 0 lies below any positive range
+    return s > 0.0 ? std::clamp(std::log(s / lo) / std::log(hi / lo), 0.0, 1.0) : 0.0;
+  return std::clamp((s - lo) / (hi - lo), 0.0, 1.0);
+}
+
+double TransferFunction::valueAt(double x) const {
+  if (!(hi > lo)) return lo;
+  if (scale == ScalarScale::Log) return x <= 0.0 ? lo : x >= 1.0 ? hi : lo * std::pow(hi / lo, x);
+  return lo + x * (hi - lo);
+}
+
+void checkScale(const TransferFunction& tf, const std::string& what) {
+  if (tf.scale == ScalarScale::Log && !(tf.lo > 0.0 && std::isfinite(tf.hi)))
+    throw Error(what, ": a log scale needs a positive range, not ", tf.lo, " .. ", tf.hi,
+                ": give --range LO,HI with 0 < LO < HI");
+}
+
 glm::dvec4 TransferFunction::lookup(double s) const {
   if (!std::isfinite(s) || table.empty()) return glm::dvec4(0.0);
-  double x = hi > lo ? (s - lo) / (hi - lo) : 0.5;
-  x = std::clamp(x, 0.0, 1.0) * double(table.size() - 1);
+  const double x = coordinate(s) * double(table.size() - 1);
   size_t i = std::min(size_t(x), table.size() - 1);
   size_t j = std::min(i + 1, table.size() - 1);
   double f = x - double(i);
@@ -184,7 +202,7 @@ void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points
   const size_t n = tf.table.size();
   for (size_t i = 0; i < n; ++i) {
     const double x = n > 1 ? double(i) / double(n - 1) : 0.0;
-    tf.table[i].a = float(at(tf.hi > tf.lo ? tf.lo + x * (tf.hi - tf.lo) : tf.lo));
+    tf.table[i].a = float(at(tf.valueAt(x)));
   }
 }
 

@@ -2,8 +2,10 @@
 // reference.
 //
 // Model (docs/ARCHITECTURE.md, "Rendering model"):
-//   x = clamp((s - lo) / (hi - lo), 0, 1); the table (N >= 256 RGBA entries) is interpolated
-//   linearly at x * (N - 1). NaN or infinite scalars are transparent.
+//   x = clamp((s - lo) / (hi - lo), 0, 1), or on a log scale clamp(log(s / lo) / log(hi / lo), 0,
+//   1) (0 < lo, values <= 0 below the range); the table (N >= 256 RGBA entries) is interpolated
+//   linearly at x * (N - 1). NaN or infinite scalars are transparent. The scalar is interpolated
+//   in the cells before it is mapped, on either scale (as ParaView's log colour mapping does).
 //   Opacity is per unit length: extinction sigma(s) = opacity(s) * opacityScale / unitDistance,
 //   so a sample taken every dt has alpha = 1 - exp(-sigma * dt) (opacity corrected for dt), and a
 //   homogeneous slab of thickness L has opacity 1 - exp(-sigma * L) whatever dt is.
@@ -18,16 +20,29 @@
 
 namespace sm::scene {
 
+// How scalars map onto the table: linearly over [lo, hi], or by their logarithm (for fields that
+// span decades: density, pressure, vorticity magnitude).
+enum class ScalarScale { Linear, Log };
+
 struct TransferFunction {
   std::vector<glm::vec4> table;  // rgb + opacity in [0, 1]
   double lo = 0.0, hi = 1.0;
+  ScalarScale scale = ScalarScale::Linear;
   double opacityScale = 1.0;
   double unitDistance = 1.0;
   glm::vec3 nanColor{1.0f, 1.0f, 0.0f};  // from ParaView files; NaN samples are still transparent
 
   glm::dvec4 lookup(double s) const;  // rgb + table opacity; (0,0,0,0) for non-finite s
   double extinction(double s) const;  // sigma(s), per world unit
+  // Where a finite s falls in the table, in [0, 1] (0.5 for an empty range).
+  double coordinate(double s) const;
+  // The data value at table coordinate x in [0, 1]: the inverse of coordinate() inside the range.
+  double valueAt(double x) const;
 };
+
+// Throws sm::Error naming `what` when the range cannot take the scale: a log scale needs
+// 0 < lo <= hi.
+void checkScale(const TransferFunction& tf, const std::string& what);
 
 // Names accepted by --colormap besides a .json file.
 std::vector<std::string> builtinColormapNames();

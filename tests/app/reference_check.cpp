@@ -2,8 +2,8 @@
 // [max-rmse]
 //                 [time-step]
 // Renders MESH with the double-precision CPU reference (Grid mode: the same samples as the GPU),
-// clipped by the planes of REFERENCE_CHECK_CLIP and with the opacity points of
-// REFERENCE_CHECK_OPACITY if set,
+// clipped by the planes of REFERENCE_CHECK_CLIP, with the opacity points of
+// REFERENCE_CHECK_OPACITY and on a log scale if REFERENCE_CHECK_LOG is 1,
 // composites over black like `render --background 0,0,0`, and compares with IMAGE.
 #include <algorithm>
 #include <cstdio>
@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
     tf.unitDistance = std::atof(argv[7]);
     tf.lo = std::atof(argv[8]);
     tf.hi = std::atof(argv[9]);
+    if (const char* log = std::getenv("REFERENCE_CHECK_LOG"); log && std::string(log) == "1")
+      tf.scale = scene::ScalarScale::Log;
     // Opacity points from REFERENCE_CHECK_OPACITY="V:A,V:A,...", as `render --opacity` takes them.
     if (const char* opacity = std::getenv("REFERENCE_CHECK_OPACITY")) {
       std::vector<scene::OpacityPoint> points;

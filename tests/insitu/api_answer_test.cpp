@@ -132,6 +132,41 @@ TEST_F(InsituApi, ClipPlanesCutTheSlab) {
   EXPECT_LT(maxErr, sigma * s.sampleDistance + 1e-4);
 }
 
+// A log scale through the API: density 10 over the range [1, 1000] sits a third of the way up a
+// table whose opacity ramps from 0 to 1, so the slab has a third of the extinction (on a linear
+// scale, under a hundredth); a range that is not positive is refused on every rank alike.
+TEST_F(InsituApi, LogScaleTakesTheLogCoordinate) {
+  SimMesh sim = simMesh(sm::test::hexGrid(3));
+  vis_->setMesh(sim.view());
+  vis_->setField("density", std::vector<float>(sim.vertices(), 10.0f));
+  const double sigma = 1.3;
+  api::RenderSettings s = slabSettings(3.0 * sigma);
+  s.table.clear();
+  for (int i = 0; i < 256; ++i) s.table.push_back({0.5f, 0.5f, 0.5f, float(i) / 255.0f});
+  s.range = {1.0, 1000.0};
+  s.logScale = true;
+  api::Image img = vis_->render(s);
+  const scene::CameraFrame cam = frameOf(s);
+  double maxErr = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      double t0, t1;
+      rayBox(cam.eye, cam.pixelDirection(x, y), 0.0, 1.0, t0, t1);
+      const double L = t1 > t0 ? t1 - t0 : 0.0;
+      maxErr = std::max(maxErr, std::abs(alphaAt(img, x, y) - (1.0 - std::exp(-sigma * L))));
+    }
+  EXPECT_LT(maxErr, sigma * s.sampleDistance + 1e-4);
+  s.range = {0.0, 1000.0};
+  try {
+    vis_->render(s);
+    ADD_FAILURE() << "a log scale over [0, 1000] was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("render: logScale: a log scale needs a positive range"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A cell field becomes, at each vertex, the mean of the elements that use it (computed here
 // independently, in the caller's shuffled vertex order), and renders as that vertex field does.
 TEST_F(InsituApi, CellFieldIsTheMeanOfTheElementsAtEachVertex) {

@@ -120,7 +120,14 @@ void ViewScene::selectField(int index) {
   field_ = *known;
   settings_.transferFunction.lo = field_.range.first;
   settings_.transferFunction.hi = field_.range.second;
+  settings_.transferFunction.scale = scaleFor(field_);
   step_ = -1;  // scalars of the new field are uploaded by applyState
+}
+
+// --log-scale applies to the fields whose range is positive; the others show on a linear scale
+// (the first field's range was checked at start, as render checks it).
+scene::ScalarScale ViewScene::scaleFor(const FieldInfo& f) const {
+  return job_.logScale && f.range.first > 0 ? scene::ScalarScale::Log : scene::ScalarScale::Linear;
 }
 
 // Collective, as every rank selects the same fields in the same order; kept per field, so that
@@ -178,6 +185,7 @@ void ViewScene::applyState(ViewState& state) {
         scene::makeTransferFunction(choices_.colormaps[size_t(state.colormap)]);
     settings_.transferFunction.lo = field_.range.first;
     settings_.transferFunction.hi = field_.range.second;
+    settings_.transferFunction.scale = scaleFor(field_);
     settings_.transferFunction.unitDistance = unit;
     if (points && fieldIndex_ == 0)
       scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints, "--opacity");

@@ -69,6 +69,7 @@ class ViewScene {
  private:
   void selectField(int index);
   FieldInfo describeField(const std::string& name, std::optional<std::pair<double, double>> range);
+  scene::ScalarScale scaleFor(const FieldInfo& f) const;
   void applyState(ViewState& state);
   void applyStep(ViewState& state);
 

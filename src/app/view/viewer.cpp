@@ -397,6 +397,7 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
                       "--step=" + fmt("%.17g", state_.dt),
                       "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
   if (legend_) j["render_args"].push_back("--legend");
+  if (tf.scale == scene::ScalarScale::Log) j["render_args"].push_back("--log-scale");
   if (!job_.opacityPoints.empty() && state_.field == 0)
     j["render_args"].push_back("--opacity=" + app::formatOpacityPoints(job_.opacityPoints));
   j["legend"] = legend_;

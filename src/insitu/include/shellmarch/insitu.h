@@ -129,6 +129,9 @@ struct RenderSettings {
   // interpolated linearly over the range); replaces `colormap`.
   std::vector<std::array<float, 4>> table;
   std::optional<std::array<double, 2>> range;  // unset: the field's min and max over all ranks
+  // Map the field's logarithm onto the table (the range must then be positive; values <= 0 take
+  // the table's first entry).
+  bool logScale = false;
   double opacityScale = 1.0;
   double unitDistance = 0;         // opacity 1 means optical depth 1 over this; <= 0: diagonal / 8
   double sampleDistance = 0;       // between samples along a ray; <= 0: half the mean element size
