@@ -55,6 +55,27 @@ assert '--field=linear' in args, args
 assert '--log-scale' not in args, args
 PY
 
+# The g key turns the scale on in a viewer started without it (and off again), with opacity
+# points too, whose table entries move with the scale: render draws each screenshot from the
+# viewer's render arguments.
+keyed() {  # NAME SCRIPT: the screenshot NAME.png and the render arguments in NAME.json
+  printf "$2" > "$1.txt"
+  "$sm" view cube.pvtu "${tf[@]}" --opacity 1:0,1.5:0.8,4:0.2 --headless --print-camera \
+    --script "$1.txt" --screenshot "$1.png" > "$1.json"
+  python3 -c "import json; print(' '.join(json.loads(open('$1.json').read().splitlines()[-1])['render_args']))"
+}
+on=$(keyed key_on 'key g\nframe\nquit\n')
+off=$(keyed key_off 'key g\nframe\nkey g\nframe\nquit\n')
+[[ " $on " == *" --log-scale "* ]] || fail "g did not turn the log scale on: $on"
+[[ " $off " != *" --log-scale "* ]] || fail "g again did not turn it off: $off"
+# shellcheck disable=SC2086
+"$sm" render cube.pvtu $on --background 0,0,0 --out render_key_on.png >/dev/null
+# shellcheck disable=SC2086
+"$sm" render cube.pvtu $off --background 0,0,0 --out render_key_off.png >/dev/null
+"$diff" key_on.png render_key_on.png --max-abs 0.004
+"$diff" key_off.png render_key_off.png --max-abs 0.004
+"$diff" key_on.png key_off.png --min-max-abs 0.05
+
 # Bad combinations: one line naming --log-scale, a non-zero exit, nothing written.
 bad() { refused "$1" bad.pfm "$sm" render cube.pvtu "${@:2}" --size 16x16 --out bad.pfm; }
 bad "--log-scale: field 'linear' has the range 0 .. 1, and a log scale needs a positive one" \

@@ -179,6 +179,22 @@ TEST(ViewerInput, TheCutKeysPlaceAndMoveAClipPlane) {
   EXPECT_EQ(t.cut, 0u);
 }
 
+// g turns the log scale on and off (for every rank: it is part of the broadcast state), and the
+// controls list it.
+TEST(ViewerInput, TheGKeyTogglesTheLogScale) {
+  InputHandler h(startState().camera(), choices());
+  LocalRequests local;
+  ViewState s = startState();
+  EXPECT_EQ(s.logScale, 0u);
+  play("key g\n", h, s, local);
+  EXPECT_EQ(s.logScale, 1u);
+  play("key g\n", h, s, local);
+  EXPECT_EQ(s.logScale, 0u);
+  EXPECT_EQ(keyFromName("g"), Key::ToggleLogScale);
+  EXPECT_FALSE(keyRepeats(Key::ToggleLogScale));
+  EXPECT_NE(controlsHelp().find("  g  "), std::string::npos);
+}
+
 // Held down, a stepping key steps again with each auto-repeat; space would toggle play on and
 // off, so toggles act once per press.
 TEST(ViewerInput, HeldKeysRepeatOnlyWhenTheyStep) {

@@ -17,13 +17,13 @@ int cycle(int value, int delta, size_t count) {
 
 Key keyFromName(const std::string& name) {
   static const std::map<std::string, Key> keys = {
-      {"right", Key::NextStep}, {"space", Key::TogglePlay}, {"left", Key::PrevStep},
-      {"up", Key::MoreOpaque},  {"down", Key::LessOpaque},  {"f", Key::NextField},
-      {"c", Key::NextColormap}, {"[", Key::FinerStep},      {"]", Key::CoarserStep},
-      {"r", Key::ResetView},    {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
-      {"l", Key::ToggleLegend}, {"h", Key::Help},           {"q", Key::Quit},
-      {"x", Key::ToggleCut},    {",", Key::CutNearer},      {".", Key::CutFarther},
-      {"escape", Key::Quit}};
+      {"right", Key::NextStep},   {"space", Key::TogglePlay}, {"left", Key::PrevStep},
+      {"up", Key::MoreOpaque},    {"down", Key::LessOpaque},  {"f", Key::NextField},
+      {"c", Key::NextColormap},   {"[", Key::FinerStep},      {"]", Key::CoarserStep},
+      {"r", Key::ResetView},      {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
+      {"l", Key::ToggleLegend},   {"h", Key::Help},           {"q", Key::Quit},
+      {"x", Key::ToggleCut},      {",", Key::CutNearer},      {".", Key::CutFarther},
+      {"g", Key::ToggleLogScale}, {"escape", Key::Quit}};
   auto it = keys.find(name);
   return it == keys.end() ? Key::None : it->second;
 }
@@ -64,6 +64,7 @@ std::string controlsHelp() {
          "  x / shift+x                   cut away the near / far half: a clip plane through the\n"
          "                                point looked at, facing the camera; again: no cut\n"
          "  , / .                         move the cut nearer / farther\n"
+         "  g                             log scale on / off (fields with a positive range)\n"
          "  h                             print these controls (on stderr)\n"
          "  q, escape                     quit\n";
 }
@@ -170,6 +171,9 @@ void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& l
       break;
     case Key::ToggleLegend:
       local.toggleLegend = true;
+      break;
+    case Key::ToggleLogScale:
+      state.logScale = !state.logScale;
       break;
     case Key::Help:
       local.help = true;

@@ -109,6 +109,7 @@ ViewState ViewScene::initialState(int width, int height, bool playing) const {
   s.height = height;
   s.step = parseViewStep(job_.time);
   s.playing = playing;
+  s.logScale = job_.logScale ? 1 : 0;
   return s;
 }
 
@@ -120,14 +121,14 @@ void ViewScene::selectField(int index) {
   field_ = *known;
   settings_.transferFunction.lo = field_.range.first;
   settings_.transferFunction.hi = field_.range.second;
-  settings_.transferFunction.scale = scaleFor(field_);
   step_ = -1;  // scalars of the new field are uploaded by applyState
 }
 
-// --log-scale applies to the fields whose range is positive; the others show on a linear scale
-// (the first field's range was checked at start, as render checks it).
-scene::ScalarScale ViewScene::scaleFor(const FieldInfo& f) const {
-  return job_.logScale && f.range.first > 0 ? scene::ScalarScale::Log : scene::ScalarScale::Linear;
+// The log scale (--log-scale, the g key) applies to the fields whose range is positive; the others
+// show on a linear scale (with --log-scale, the first field's range was checked at start, as
+// render checks it).
+scene::ScalarScale ViewScene::scaleFor(const ViewState& state, const FieldInfo& f) const {
+  return state.logScale && f.range.first > 0 ? scene::ScalarScale::Log : scene::ScalarScale::Linear;
 }
 
 // Collective, as every rank selects the same fields in the same order; kept per field, so that
@@ -179,19 +180,24 @@ void ViewScene::applyState(ViewState& state) {
   // The table follows the colour map and, with --opacity, the field: the points are values of
   // the first field, and the others keep their colour map's opacity.
   const bool points = !job_.opacityPoints.empty();
-  if (state.colormap != colormap_ || (points && fieldIndex_ != tableField_)) {
+  // Opacity points sit at each entry's value, which the scale decides.
+  const scene::ScalarScale scale = scaleFor(state, field_);
+  if (state.colormap != colormap_ ||
+      (points && (fieldIndex_ != tableField_ || scale != tableScale_))) {
     const double unit = settings_.transferFunction.unitDistance;
     settings_.transferFunction =
         scene::makeTransferFunction(choices_.colormaps[size_t(state.colormap)]);
     settings_.transferFunction.lo = field_.range.first;
     settings_.transferFunction.hi = field_.range.second;
-    settings_.transferFunction.scale = scaleFor(field_);
+    settings_.transferFunction.scale = scale;
     settings_.transferFunction.unitDistance = unit;
     if (points && fieldIndex_ == 0)
       scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints, "--opacity");
     colormap_ = state.colormap;
     tableField_ = fieldIndex_;
+    tableScale_ = scale;
   }
+  settings_.transferFunction.scale = scale;
   settings_.transferFunction.opacityScale = state.opacityScale;
   settings_.camera = state.camera();
   settings_.clipPlanes = job_.clipPlanes;

@@ -69,7 +69,7 @@ class ViewScene {
  private:
   void selectField(int index);
   FieldInfo describeField(const std::string& name, std::optional<std::pair<double, double>> range);
-  scene::ScalarScale scaleFor(const FieldInfo& f) const;
+  scene::ScalarScale scaleFor(const ViewState& state, const FieldInfo& f) const;
   void applyState(ViewState& state);
   void applyStep(ViewState& state);
 
@@ -103,6 +103,7 @@ class ViewScene {
   std::vector<std::optional<FieldInfo>> fields_;  // choices_.fields', once selected
   int fieldIndex_ = -1, step_ = -1, colormap_ = -1;
   int tableField_ = 0;  // the field the transfer function's opacity was made for
+  scene::ScalarScale tableScale_ = scene::ScalarScale::Linear;  // and the scale
 };
 
 // The time step --time names: one index (the viewer shows one step at a time).

@@ -34,6 +34,8 @@ struct ViewState {
   // top of the job's --clip planes.
   uint32_t cut = 0;
   glm::dvec3 cutPoint{0, 0, 0}, cutNormal{0, 0, 1};
+  // 1: fields whose range is positive map their logarithm (g key; --log-scale starts with it on).
+  uint32_t logScale = 0;
 
   scene::ClipPlane cutPlane() const { return {cutPoint, cutNormal}; }
 

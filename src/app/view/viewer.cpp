@@ -313,7 +313,9 @@ std::vector<std::string> Viewer::overlayLines() const {
                    : options_.fps > 0 ? fmt(" PLAYING MAX %g/S  ", options_.fps)
                                       : std::string(" PLAYING  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
-  lines.push_back(fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt));
+  lines.push_back(
+      fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt) +
+      (scene_->settings().transferFunction.scale == scene::ScalarScale::Log ? "  LOG SCALE" : ""));
   if (state_.renderScale > 1) lines.push_back(fmt("MOVING: 1/%g SIZE", double(state_.renderScale)));
   if (state_.cut) {
     const auto short3 = [](const glm::dvec3& v, const char* f) {

@@ -63,6 +63,8 @@ Key keyOf(int key) {
       return Key::CutNearer;
     case GLFW_KEY_PERIOD:
       return Key::CutFarther;
+    case GLFW_KEY_G:
+      return Key::ToggleLogScale;
     case GLFW_KEY_Q:
     case GLFW_KEY_ESCAPE:
       return Key::Quit;
