@@ -111,7 +111,12 @@ layout(constant_id = 12) const bool kElementExact = false;
 // of PreintegrationTable::deviceWords (one 64-bit gather per colour corner and per cumulative
 // lookup).
 float piCoord(FrameParams fp, float s, uint bins) {
-  return clamp((s - fp.piLo) / (fp.piHi - fp.piLo), 0.0, 1.0) * float(bins - 1u);
+  float x;
+  if (kLogScale)  // a log-spaced grid (PreintegrationTable::coordinate)
+    x = (log2(max(s, 1.17549435e-38)) - log2(fp.piLo)) / (log2(fp.piHi) - log2(fp.piLo));
+  else
+    x = (s - fp.piLo) / (fp.piHi - fp.piLo);
+  return clamp(x, 0.0, 1.0) * float(bins - 1u);
 }
 
 float piCumulativeAt(FrameParams fp, float s) {
@@ -159,7 +164,8 @@ vec4 piInside(FrameParams fp, float sf, float sb, float L) {
   float mean;
   // A branch, not a selection, so that a SIMD batch whose pieces all change enough skips the
   // transfer function's gathers.
-  if (abs(ds) > 1e-3 * (fp.piHi - fp.piLo)) mean = (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds;
+  float small = kLogScale ? max(sf, sb) : fp.piHi - fp.piLo;
+  if (abs(ds) > 1e-3 * small) mean = (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds;
   else mean = transferLookup(fp, 0.5 * (sf + sb)).a * fp.sigmaScale;
   float alpha = 1.0 - exp(-L * max(mean, 0.0));
   return vec4(piColor(fp, sf, sb, L) * alpha, alpha);

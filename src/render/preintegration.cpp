@@ -15,24 +15,37 @@ int cumulativeBinsFor(const scene::TransferFunction& tf) {
 }
 }  // namespace
 
+double PreintegrationTable::coordinate(double s) const {
+  if (!(hi > lo)) return 0.0;
+  if (scale == scene::ScalarScale::Log)  // the shader's formula, in double
+    return s > 0.0 ? std::clamp((std::log2(s) - std::log2(lo)) / (std::log2(hi) - std::log2(lo)),
+                                0.0, 1.0)
+                   : 0.0;
+  return std::clamp((s - lo) / (hi - lo), 0.0, 1.0);
+}
+
+double PreintegrationTable::gridValue(int i, int n) const {
+  if (scale == scene::ScalarScale::Log)
+    return i <= 0 ? lo : i >= n - 1 ? hi : lo * std::pow(hi / lo, double(i) / (n - 1));
+  return lo + (hi - lo) * i / (n - 1);
+}
+
 double PreintegrationTable::cumulativeAt(double s) const {
   const int n = int(cumulative.size());
-  double x = hi > lo ? std::clamp((s - lo) / (hi - lo), 0.0, 1.0) * (n - 1) : 0.0;
+  double x = coordinate(s) * (n - 1);
   int i = std::min(int(x), n - 2);
   return cumulative[i] + (cumulative[i + 1] - cumulative[i]) * (x - i);
 }
 
 double PreintegrationTable::sigmaAt(double s) const {
   const int n = int(sigma.size());
-  double x = std::clamp((s - lo) / (hi - lo), 0.0, 1.0) * (n - 1);
+  double x = coordinate(s) * (n - 1);
   int i = std::min(int(x), n - 2);
   return sigma[i] + (sigma[i + 1] - sigma[i]) * (x - i);
 }
 
 glm::dvec3 PreintegrationTable::colorAt(double sf, double sb, double L) const {
-  auto coord = [&](double s) {
-    return std::clamp((s - lo) / (hi - lo), 0.0, 1.0) * (scalarBins - 1);
-  };
+  auto coord = [&](double s) { return coordinate(s) * (scalarBins - 1); };
   double x[3] = {coord(sf), coord(sb),
                  std::sqrt(std::clamp(L * sigmaMax / tauMax, 0.0, 1.0)) * (lengthBins - 1)};
   const int n[3] = {scalarBins, scalarBins, lengthBins};
@@ -54,8 +67,9 @@ glm::dvec3 PreintegrationTable::colorAt(double sf, double sb, double L) const {
 
 glm::dvec4 PreintegrationTable::integrateInside(double sf, double sb, double L) const {
   double ds = sb - sf;
-  double mean = std::abs(ds) > kSmallDelta * (hi - lo) ? (cumulativeAt(sb) - cumulativeAt(sf)) / ds
-                                                       : sigmaAt(0.5 * (sf + sb));
+  const double small = scale == scene::ScalarScale::Log ? std::max(sf, sb) : hi - lo;
+  double mean = std::abs(ds) > kSmallDelta * small ? (cumulativeAt(sb) - cumulativeAt(sf)) / ds
+                                                   : sigmaAt(0.5 * (sf + sb));
   double alpha = 1.0 - std::exp(-L * std::max(mean, 0.0));
   return glm::dvec4(colorAt(sf, sb, L) * alpha, alpha);
 }
@@ -137,25 +151,31 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
   // function, and one with distinct float ends keeps the device's division finite.
   t.lo = double(float(tf.lo));
   t.hi = double(float(tf.hi));
+  t.scale = tf.scale;
   const bool point = !(t.hi > t.lo);
-  if (point) {
+  if (point && t.scale == scene::ScalarScale::Log) {  // widened by a factor: it stays positive
+    const double mid = t.lo;
+    t.lo = double(float(mid * (1.0 - 0x1p-10)));
+    t.hi = double(float(mid * (1.0 + 0x1p-10)));
+  } else if (point) {
     const double mid = t.lo, half = std::max(0.5, std::abs(mid) * 0x1p-16);
     t.lo = double(float(mid - half));
     t.hi = double(float(mid + half));
   }
-  const double range = t.hi - t.lo;
   auto sigma = [&](double s) { return tf.lookup(s).a * tf.opacityScale / tf.unitDistance; };
   for (const auto& e : tf.table) {
     t.sigma.push_back(float(double(e.a) * tf.opacityScale / tf.unitDistance));
     t.sigmaMax = std::max(t.sigmaMax, double(t.sigma.back()));
   }
   if (point) t.sigma.assign(2, float(sigma(tf.lo)));
-  // S over the range by Simpson's rule on each sub-interval (exact for the piecewise-linear sigma).
+  // S over the range by Simpson's rule on each sub-interval (exact for the piecewise-linear sigma
+  // of a linear scale; on a log one, sigma is linear in log s there, and the intervals are too
+  // narrow for that to matter: a ratio of (hi / lo)^(1 / 1020)).
   const int nc = cumulativeBinsFor(tf);
   t.cumulative.assign(nc, 0.0f);
   double acc = 0.0;
   for (int i = 1; i < nc; ++i) {
-    double a = t.lo + range * (i - 1) / (nc - 1), b = t.lo + range * i / (nc - 1);
+    double a = t.gridValue(i - 1, nc), b = t.gridValue(i, nc);
     acc += (b - a) / 6.0 * (sigma(a) + 4 * sigma(0.5 * (a + b)) + sigma(b));
     t.cumulative[i] = float(acc);
   }
@@ -174,8 +194,7 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
     std::vector<glm::dvec3> col(quadrature);
     for (int64_t pair = begin; pair < end; ++pair) {
       const int f = int(pair % scalarBins), b = int(pair / scalarBins);
-      const double sf = t.lo + range * f / (scalarBins - 1),
-                   sb = t.lo + range * b / (scalarBins - 1);
+      const double sf = t.gridValue(f, scalarBins), sb = t.gridValue(b, scalarBins);
       const double du = 1.0 / quadrature;
       double running = 0.0;
       for (int q = 0; q < quadrature; ++q) {  // midpoint rule in u

@@ -8,7 +8,9 @@
 //            tabulated over (sf, sb, sqrt(L sigmaMax / tauMax)) and interpolated trilinearly. N is
 //            smooth in all three, which keeps interpolation error small.
 // Outside [lo, hi] the transfer function is constant, so a piece is split where its scalar leaves
-// the range and the outside parts are integrated in closed form with the end values.
+// the range and the outside parts are integrated in closed form with the end values. On a log
+// scale the tables' scalar grid is log-spaced (the transfer function's own coordinate), so every
+// decade of the range has its share of bins; the scalar still runs linearly along each piece.
 //
 // On the device every table read is a gather per lane (lavapipe), so the tables are laid out for
 // few of them: a colour is three 21-bit fixed-point channels in one 64-bit word (one gather, not
@@ -44,15 +46,22 @@ struct PreintegrationTable {
   int scalarBins = 0;  // of the colour table along sf and sb, over [lo, hi]
   int lengthBins = 0;  // along sqrt(tau / tauMax)
   double lo = 0, hi = 1;
+  scene::ScalarScale scale = scene::ScalarScale::Linear;  // of the scalar grid over [lo, hi]
   double sigmaMax = 0, tauMax = 0;
   std::vector<float> cumulative;       // S at cumulativeBins points over [lo, hi] (per scalar unit)
   std::vector<glm::vec3> colors;       // N (quantised) at [(l * bins + b) * bins + f]
   std::vector<float> sigma;            // extinction per transfer-function entry over [lo, hi]
   glm::vec4 below{0.0f}, above{0.0f};  // the function's rgb and extinction below lo and above hi
 
-  // Below this scalar change (relative to the range) the mean extinction is taken at the midpoint:
-  // the difference of S would cancel in single precision on the device.
+  // Below this scalar change (relative to the range, or on a log scale to the larger end) the mean
+  // extinction is taken at the midpoint: the difference of S would cancel in single precision on
+  // the device.
   static constexpr double kSmallDelta = 1e-3;
+
+  // Where s falls on the tables' scalar grid, in [0, 1] (s clamped to [lo, hi]).
+  double coordinate(double s) const;
+  // The scalar at point i of an n-point grid over [lo, hi] (i = 0: lo, i = n - 1: hi).
+  double gridValue(int i, int n) const;
 
   // Colour (premultiplied) and opacity of a linear piece, on the CPU exactly as the shader does it.
   glm::dvec4 integrate(double sf, double sb, double L) const;

@@ -64,6 +64,7 @@ void Renderer::updatePreintegration(const RenderSettings& s) {
   h.span(std::span<const glm::vec4>(tf.table))
       .pod(tf.lo)
       .pod(tf.hi)
+      .pod(tf.scale)
       .pod(tf.opacityScale)
       .pod(tf.unitDistance);
   uint64_t key = h.digest();
@@ -166,13 +167,6 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
 
 void Renderer::checkScale(const RenderSettings& s) {
   scene::checkScale(s.transferFunction, "--log-scale");
-  // The pre-integrated tables are built over bins linear in the scalar: decades below the top
-  // one would share a bin or two.
-  if (s.transferFunction.scale == scene::ScalarScale::Log &&
-      s.integration == Integration::ElementExact)
-    throw Error(
-        "--log-scale: element-exact integration pre-integrates the transfer function over "
-        "a linear scalar scale; use --integration sampled with a log scale");
 }
 
 void Renderer::setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const {
