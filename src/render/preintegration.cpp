@@ -13,6 +13,15 @@ namespace {
 int cumulativeBinsFor(const scene::TransferFunction& tf) {
   return int(tf.table.size() - 1) * 4 + 1;
 }
+
+// x rounded to float, as the device will hold it. Through a volatile: GCC 12.2 at -O3 vectorises
+// the pair double(float(lo)), double(float(hi)) into a conversion whose result it then drops,
+// storing lo and hi unrounded (reproduced outside this code base), which put the tables' grid
+// off the device's for a constant field of 1e7.
+double asFloat(double x) {
+  volatile float f = float(x);
+  return f;
+}
 }  // namespace
 
 double PreintegrationTable::coordinate(double s) const {
@@ -149,18 +158,18 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
   // that float cannot tell from a point (a constant field: every value maps to the table's middle,
   // scene::TransferFunction::lookup) is widened around it: any interval reproduces a constant
   // function, and one with distinct float ends keeps the device's division finite.
-  t.lo = double(float(tf.lo));
-  t.hi = double(float(tf.hi));
+  t.lo = asFloat(tf.lo);
+  t.hi = asFloat(tf.hi);
   t.scale = tf.scale;
   const bool point = !(t.hi > t.lo);
   if (point && t.scale == scene::ScalarScale::Log) {  // widened by a factor: it stays positive
     const double mid = t.lo;
-    t.lo = double(float(mid * (1.0 - 0x1p-10)));
-    t.hi = double(float(mid * (1.0 + 0x1p-10)));
+    t.lo = asFloat(mid * (1.0 - 0x1p-10));
+    t.hi = asFloat(mid * (1.0 + 0x1p-10));
   } else if (point) {
     const double mid = t.lo, half = std::max(0.5, std::abs(mid) * 0x1p-16);
-    t.lo = double(float(mid - half));
-    t.hi = double(float(mid + half));
+    t.lo = asFloat(mid - half);
+    t.hi = asFloat(mid + half);
   }
   auto sigma = [&](double s) { return tf.lookup(s).a * tf.opacityScale / tf.unitDistance; };
   for (const auto& e : tf.table) {

@@ -136,7 +136,7 @@ void typeTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Ta
   report(sc.name, vs, t, j);
 }
 
-// The mixed demo mesh: shading, element-exact, compaction, fragment encoding.
+// The mixed demo mesh: shading, element-exact, compaction, fragment encoding, log scale.
 void demoTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Table& t,
                nlohmann::json& j) {
   std::vector<Variant> vs = {variant(sc, "all", "nothing optional used (baseline)"),
@@ -145,12 +145,17 @@ void demoTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Ta
                              variant(sc, "shading", "used"),
                              variant(sc, "element-exact integration", "used"),
                              variant(sc, "XOR compaction", "not used (plain elements)"),
-                             variant(sc, "8-bit fragments", "used")};
+                             variant(sc, "8-bit fragments", "used"),
+                             variant(sc, "log scale", "used")};
   vs[2].settings.shading = render::Shading{true, 1.0, 0.0, 0.0, 1.0};
   vs[3].settings.shading.enabled = true;
   vs[4].settings.integration = render::Integration::ElementExact;
   vs[5].scene = sc.gpuPlain.get();
   vs[6].lists.encoding = comp::Encoding::Rgba8;
+  scene::TransferFunction& log = vs[7].settings.transferFunction;
+  log.scale = scene::ScalarScale::Log;
+  if (!(log.lo > 0)) log.lo = log.hi * 1e-3;  // a log scale needs a positive range
+
   timeInterleaved(ctx, vs, a.runs, a.rounds);
   report(sc.name, vs, t, j);
 }
