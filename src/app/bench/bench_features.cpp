@@ -155,7 +155,6 @@ void demoTable(const FeatureArgs& a, const vk::Context& ctx, const Scene& sc, Ta
   scene::TransferFunction& log = vs[7].settings.transferFunction;
   log.scale = scene::ScalarScale::Log;
   if (!(log.lo > 0)) log.lo = log.hi * 1e-3;  // a log scale needs a positive range
-
   timeInterleaved(ctx, vs, a.runs, a.rounds);
   report(sc.name, vs, t, j);
 }
