@@ -305,23 +305,23 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
 std::vector<std::string> Viewer::overlayLines() const {
   const FieldInfo& f = scene_->field();
   std::vector<std::string> lines;
-  lines.push_back(fmt("FRAME %.1f MS", frameMs_ > 0 ? frameMs_ : renderMs_) +
-                  fmt(" (RENDER %.1f MS)", renderMs_));
-  lines.push_back(fmt("%.2f FRAGMENTS/PIXEL", fragmentsPerPixel_));
-  lines.push_back(f.name + " STEP " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
+  lines.push_back(fmt("frame %.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) +
+                  fmt(" (render %.1f ms)", renderMs_));
+  lines.push_back(fmt("%.2f fragments/pixel", fragmentsPerPixel_));
+  lines.push_back(f.name + " step " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
                   (!state_.playing    ? std::string("  ")
-                   : options_.fps > 0 ? fmt(" PLAYING MAX %g/S  ", options_.fps)
-                                      : std::string(" PLAYING  ")) +
+                   : options_.fps > 0 ? fmt(" playing, at most %g/s  ", options_.fps)
+                                      : std::string(" playing  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(
-      fmt("OPACITY X%.3g", state_.opacityScale) + fmt("  DT %.3g", state_.dt) +
-      (scene_->settings().transferFunction.scale == scene::ScalarScale::Log ? "  LOG SCALE" : ""));
-  if (state_.renderScale > 1) lines.push_back(fmt("MOVING: 1/%g SIZE", double(state_.renderScale)));
+      fmt("opacity x%.3g", state_.opacityScale) + fmt("  dt %.3g", state_.dt) +
+      (scene_->settings().transferFunction.scale == scene::ScalarScale::Log ? "  log scale" : ""));
+  if (state_.renderScale > 1) lines.push_back(fmt("moving: 1/%g size", double(state_.renderScale)));
   if (state_.cut) {
     const auto short3 = [](const glm::dvec3& v, const char* f) {
       return fmt(f, v.x) + "," + fmt(f, v.y) + "," + fmt(f, v.z);
     };
-    lines.push_back("CUT AT " + short3(state_.cutPoint, "%.3g") + " KEEPS " +
+    lines.push_back("cut at " + short3(state_.cutPoint, "%.3g") + " keeps " +
                     short3(state_.cutNormal, "%.2f"));
   }
   return lines;
