@@ -61,16 +61,23 @@ void expectSlab(const test::GpuRender& r, const RenderSettings& s, double sigma,
   EXPECT_LE(moved, 3) << what;
 }
 
+// The grayscale map (opacity ramping from 0 to 1) on a log scale over [1, 1000], where 10 sits a
+// third of the way up.
+scene::TransferFunction thirdOfTheWay() {
+  scene::TransferFunction tf = scene::makeTransferFunction("grayscale");
+  tf.lo = 1.0;
+  tf.hi = 1000.0;
+  tf.scale = scene::ScalarScale::Log;
+  tf.unitDistance = 0.4;
+  return tf;
+}
+
 // Scalar 10 over [1, 1000] sits a third of the way up a log scale (a linear one would put it at
 // 0.009): the grayscale map's opacity ramp gives it opacity 1/3.
 TEST(LogScale, SlabOpacityIsTakenAtTheLogCoordinate) {
   auto m = ref::test::cubeMesh(Split::Tets5, 3);
   RenderSettings s = slabSettings();
-  s.transferFunction = scene::makeTransferFunction("grayscale");
-  s.transferFunction.lo = 1.0;
-  s.transferFunction.hi = 1000.0;
-  s.transferFunction.scale = scene::ScalarScale::Log;
-  s.transferFunction.unitDistance = 0.4;
+  s.transferFunction = thirdOfTheWay();
   const double sigma = (1.0 / 3.0) / 0.4;
   auto r =
       test::renderOnGpu(m, ref::test::pointField(m, [](const glm::dvec3&) { return 10.0; }), s);
@@ -132,11 +139,7 @@ TEST(LogScale, ElementExactGivesTheContinuousIntegral) {
   auto m = ref::test::cubeMesh(Split::Tets5, 3);
   RenderSettings s = slabSettings();
   s.integration = Integration::ElementExact;
-  s.transferFunction = scene::makeTransferFunction("grayscale");
-  s.transferFunction.lo = 1.0;
-  s.transferFunction.hi = 1000.0;
-  s.transferFunction.scale = scene::ScalarScale::Log;
-  s.transferFunction.unitDistance = 0.4;
+  s.transferFunction = thirdOfTheWay();
   const double sigma = (1.0 / 3.0) / 0.4;
   auto slab =
       test::renderOnGpu(m, ref::test::pointField(m, [](const glm::dvec3&) { return 10.0; }), s);

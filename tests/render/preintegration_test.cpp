@@ -35,6 +35,19 @@ TEST(Preintegration, ConstantMediumIsExact) {
   EXPECT_NEAR(t.integrate(0.5, 0.5, 20.0).a, 1.0 - std::exp(-sigma * 20.0), 1e-6);
 }
 
+// Front to back over 20000 equal steps of a piece of length L whose scalar runs from sf to sb.
+glm::dvec4 fineIntegration(const scene::TransferFunction& tf, double sf, double sb, double L) {
+  glm::dvec4 acc(0.0);
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    double x = (k + 0.5) / n, sv = sf + (sb - sf) * x;
+    glm::dvec4 c = tf.lookup(sv);
+    double a = 1.0 - std::exp(-c.a / tf.unitDistance * L / n);
+    acc += (1.0 - acc.a) * glm::dvec4(glm::dvec3(c) * a, a);
+  }
+  return acc;
+}
+
 // Against a fine front-to-back integration of a linear scalar through a varying transfer function.
 TEST(Preintegration, MatchesFineIntegrationOfLinearPieces) {
   scene::TransferFunction tf = scene::makeTransferFunction("cool-to-warm");
@@ -47,14 +60,7 @@ TEST(Preintegration, MatchesFineIntegrationOfLinearPieces) {
   double worst = 0;
   for (int i = 0; i < 300; ++i) {
     double sf = s(rng), sb = s(rng), L = len(rng);
-    glm::dvec4 acc(0.0);
-    const int n = 20000;
-    for (int k = 0; k < n; ++k) {
-      double x = (k + 0.5) / n, sv = sf + (sb - sf) * x;
-      glm::dvec4 c = tf.lookup(sv);
-      double a = 1.0 - std::exp(-c.a / tf.unitDistance * L / n);
-      acc += (1.0 - acc.a) * glm::dvec4(glm::dvec3(c) * a, a);
-    }
+    const glm::dvec4 acc = fineIntegration(tf, sf, sb, L);
     glm::dvec4 v = t.integrate(sf, sb, L);
     for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(v[c] - acc[c]));
   }
@@ -77,14 +83,7 @@ TEST(Preintegration, MatchesFineIntegrationOnALogScale) {
     double sf = std::pow(10.0, decade(rng)),
            sb = i % 2 ? sf * (1.0 + 0.2 * decade(rng)) : std::pow(10.0, decade(rng));
     double L = len(rng);
-    glm::dvec4 acc(0.0);
-    const int n = 20000;
-    for (int k = 0; k < n; ++k) {
-      double x = (k + 0.5) / n, sv = sf + (sb - sf) * x;
-      glm::dvec4 c = tf.lookup(sv);
-      double a = 1.0 - std::exp(-c.a / tf.unitDistance * L / n);
-      acc += (1.0 - acc.a) * glm::dvec4(glm::dvec3(c) * a, a);
-    }
+    const glm::dvec4 acc = fineIntegration(tf, sf, sb, L);
     glm::dvec4 v = t.integrate(sf, sb, L);
     for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(v[c] - acc[c]));
   }
