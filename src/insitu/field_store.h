@@ -31,6 +31,8 @@ class FieldStore {
   // Makes field `name` ("" = the first one set) the scene's scalars, uploading it only when it is
   // not there already; returns its range on this rank. A rank without vertices needs no field.
   FieldRange prepare(const std::string& name, render::GpuScene& scene);
+  // The name of the first field set ("" before any).
+  std::string firstName() const { return fields_.empty() ? std::string() : fields_.front().name; }
 
  private:
   struct Field {

@@ -81,6 +81,9 @@ void checkBasics(const api::RenderSettings& s) {
   for (double v : {s.unitDistance, s.sampleDistance, s.earlyTermination})
     if (!std::isfinite(v))
       throw Error("render: unitDistance, sampleDistance and earlyTermination must be finite");
+  for (float c : s.legendBackground)
+    if (!(c >= 0.0f && c <= 1.0f))
+      throw Error("render: legendBackground components must be in [0, 1], not ", c);
   if (!(s.earlyTermination > 0))
     throw Error("render: earlyTermination ", s.earlyTermination, " must be positive");
 }
@@ -124,6 +127,7 @@ uint64_t settingsDigest(const api::RenderSettings& s) {
       .pod(s.earlyTermination);
   h.pod(s.clipPlanes.size());
   for (const api::ClipPlane& c : s.clipPlanes) h.pod(c.point).pod(c.normal);
+  h.pod(s.legend).pod(s.legendBackground);
   return h.digest();
 }
 

@@ -18,6 +18,7 @@
 #include "render/frame_defaults.h"
 #include "render/renderer.h"
 #include "scene/image.h"
+#include "scene/legend.h"
 #include "shellmarch/insitu.h"
 #include "vk/context.h"
 
@@ -174,6 +175,14 @@ void Renderer::Impl::render(const RenderSettings& s, Image& into) {
   sm::scene::checkScale(rs.transferFunction, "render: logScale");
   sm::render::FrameResult result;
   group.runOrAbort([&] { result = renderer->render(rs, std::move(pixels)); });
+  if (group.rank() == 0 && s.legend) {  // titled as the field was asked for
+    sm::scene::Image img(s.width, s.height);
+    img.pixels = std::move(result.pixels);
+    const std::array<float, 3>& b = s.legendBackground;
+    sm::scene::drawLegend(img, rs.transferFunction, s.field.empty() ? fields.firstName() : s.field,
+                          glm::vec3(b[0], b[1], b[2]));
+    result.pixels = std::move(img.pixels);
+  }
   frameMs = timer.seconds() * 1e3;
   if (group.rank() == 0) {
     into.width = s.width;

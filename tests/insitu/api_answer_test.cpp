@@ -7,6 +7,7 @@
 #include "render/render_harness.h"
 #include "renderer_suite.h"
 #include "scene/camera.h"
+#include "scene/legend.h"
 #include "shellmarch/insitu.h"
 #include "sim_mesh.h"
 #include "support/test_meshes.h"
@@ -162,6 +163,62 @@ TEST_F(InsituApi, LogScaleTakesTheLogCoordinate) {
     ADD_FAILURE() << "a log scale over [0, 1000] was accepted";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("render: logScale: a log scale needs a positive range"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// The legend (RenderSettings::legend) is the one `render --legend` draws: the image without it,
+// with scene::drawLegend applied for the same colour map, range, field name and background, bit
+// for bit; nothing outside the legend's layout changes. A background outside [0, 1] is refused.
+TEST_F(InsituApi, LegendIsTheOneRenderDraws) {
+  SimMesh sim = simMesh(sm::test::hexGrid(3));
+  vis_->setMesh(sim.view());
+  std::vector<float> values(sim.vertices());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = float(i % 7);
+  vis_->setField("pressure", values);
+  api::RenderSettings s = slabSettings(1.3);
+  s.width = 200;
+  s.height = 150;
+  s.table.clear();
+  s.colormap = "viridis";
+  s.range = {0.0, 6.0};
+  const api::Image plain = vis_->render(s);
+  s.legend = true;
+  s.legendBackground = {1.0f, 1.0f, 1.0f};
+  const api::Image legend = vis_->render(s);
+  ASSERT_EQ(legend.rgba.size(), plain.rgba.size());
+  scene::TransferFunction tf = scene::makeTransferFunction("viridis");
+  tf.lo = 0.0;
+  tf.hi = 6.0;
+  scene::Image want(s.width, s.height);
+  for (size_t i = 0; i < want.pixels.size(); ++i)
+    want.pixels[i] = glm::vec4(plain.rgba[4 * i], plain.rgba[4 * i + 1], plain.rgba[4 * i + 2],
+                               plain.rgba[4 * i + 3]);
+  scene::drawLegend(want, tf, "pressure", glm::vec3(1.0f));
+  const scene::LegendLayout l = scene::legendLayout(s.width, s.height, tf, "pressure");
+  int changed = 0, wrong = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const size_t i = size_t(y) * s.width + x;
+      const glm::vec4 got(legend.rgba[4 * i], legend.rgba[4 * i + 1], legend.rgba[4 * i + 2],
+                          legend.rgba[4 * i + 3]);
+      wrong += got != want.pixels[i];
+      const bool differs = got != glm::vec4(plain.rgba[4 * i], plain.rgba[4 * i + 1],
+                                            plain.rgba[4 * i + 2], plain.rgba[4 * i + 3]);
+      changed += differs;
+      if (differs) {
+        EXPECT_TRUE(x >= l.left && x < l.right && y >= l.top && y < l.bottom) << x << "," << y;
+      }
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(changed, l.barWidth * l.barHeight);
+  s.legendBackground = {2.0f, 0.0f, 0.0f};
+  try {
+    vis_->render(s);
+    ADD_FAILURE() << "a legend background of 2 was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("render: legendBackground components must be in [0, 1]"),
               std::string::npos)
         << e.what();
   }

@@ -137,6 +137,11 @@ struct RenderSettings {
   double sampleDistance = 0;       // between samples along a ray; <= 0: half the mean element size
   double earlyTermination = 0.99;  // a ray stops once this opaque; >= 1 never stops early
   std::vector<ClipPlane> clipPlanes;  // up to 6: only what every plane keeps is drawn
+  // Draw the colour legend into the image, as `render --legend` does: the colour map at the
+  // right with the field's name and range. It is opaque; its text is white when the image will
+  // be shown over a dark `legendBackground` and black over a light one.
+  bool legend = false;
+  std::array<float, 3> legendBackground{0, 0, 0};
 };
 
 // Premultiplied RGBA, 4 floats per pixel, row 0 at the top. Empty on ranks other than 0.
