@@ -165,10 +165,6 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   return p;
 }
 
-void Renderer::checkScale(const RenderSettings& s) {
-  scene::checkScale(s.transferFunction, "--log-scale");
-}
-
 void Renderer::setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const {
   static_assert(scene::kMaxClipPlanes == int(gpu::SM_MAX_CLIP_PLANES));
   scene::checkClipPlanes(planes, "clip planes");
@@ -212,7 +208,7 @@ FrameResult Renderer::renderRays(const RenderSettings& settings,
 
 FrameResult Renderer::render(const RenderSettings& s, std::vector<glm::vec4> reuse) {
   auto t0 = std::chrono::steady_clock::now();
-  checkScale(s);
+  scene::checkScale(s.transferFunction, "--log-scale");
   const std::vector<glm::vec4> table = deviceTable(s.transferFunction);
   if (!transferFunction_.valid() || transferFunction_.size() < table.size() * sizeof(glm::vec4))
     transferFunction_ = vk::Buffer(ctx_, table.size() * sizeof(glm::vec4), vk::kStorageUsage,

@@ -85,8 +85,6 @@ class Renderer {
   void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
   void writeParams(const gpu::FrameParams& p);
   // Checks the planes and writes them, in device coordinates, into p.
-  // Throws sm::Error for a scale the range cannot take.
-  static void checkScale(const RenderSettings& s);
   void setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const;
 
   const vk::Context& ctx_;
