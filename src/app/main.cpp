@@ -16,6 +16,10 @@
 
 namespace {
 
+// Exit statuses: 0 done, 1 an error (bad input, a failed device, a failed rank), 2 a command line
+// the option parser refused (as the README says).
+constexpr int kUsageError = 2;
+
 // Under mpiexec every rank parses the same options and fails the same way before MPI starts: rank
 // 0 says so at once, and mpiexec, seeing it exit, ends the others. They wait a moment before they
 // speak, so that their copies of the line appear only where rank 0 did not fail.
@@ -62,9 +66,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // a flag that prints and ends the run (view --help-script)
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line like every other error (CLI11's own format adds a second line).
+    // One line like every other error (CLI11's own format adds a second line). Status 2 for every
+    // command line the parser refuses, as getopt tools do, not CLI11's per-kind codes (104,
+    // 105...).
     printError(sm::printableLine(e.what()) + " (see --help)");
-    return e.get_exit_code();
+    return kUsageError;
   } catch (const sm::Error& e) {
     // Messages quote names from input files: one printable line on the terminal.
     printError(sm::printableLine(e.what()));

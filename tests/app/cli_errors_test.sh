@@ -1,21 +1,26 @@
 #!/usr/bin/env bash
-# Bad input gets one clear line naming the file or option, a non-zero exit, and no output file.
+# Bad input gets one clear line naming the file or option, exit status 1 (2 for a command line the
+# option parser refuses), and no output file.
 set -uo pipefail
 sm=$1 work=$2
 mkdir -p "$work" && cd "$work"
 "$sm" generate --analytic cube-tets6 --cube-n 2 --out ok.pvtu >/dev/null
 fails=0
-expect() {  # expect "what the message must contain" command...
-  local want=$1; shift
+# expect_status STATUS "what the message must contain" command...: exactly STATUS (a crash or a
+# sanitizer's abort after the right message is a failure), one error line, the message in it.
+expect_status() {
+  local status=$1 want=$2; shift 2
   local out rc
   out=$("$@" 2>&1); rc=$?
   local lines; lines=$(printf '%s\n' "$out" | grep -c 'error')
-  if [ $rc -eq 0 ] || ! grep -qF -- "$want" <<<"$out" || [ "$lines" -ne 1 ]; then
-    echo "FAIL: '$*' exit $rc, wanted one error line with '$want', got:"; printf '%s\n' "$out"; fails=$((fails + 1))
+  if [ $rc -ne "$status" ] || ! grep -qF -- "$want" <<<"$out" || [ "$lines" -ne 1 ]; then
+    echo "FAIL: '$*' exit $rc (wanted $status), wanted one error line with '$want', got:"; printf '%s\n' "$out"; fails=$((fails + 1))
   else
     echo "ok: $(grep error <<<"$out")"
   fi
 }
+expect() { expect_status 1 "$@"; }  # bad input: exit status 1
+usage() { expect_status 2 "$@"; }   # a command line the option parser refuses: exit status 2
 expect "missing.vtu" "$sm" render missing.vtu --out a.png
 expect "--size" "$sm" render ok.pvtu --size 0x10 --out a.png
 expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
@@ -76,8 +81,8 @@ expect "--background" "$sm" render ok.pvtu --background 2,-1,0 --out a.png
 expect "--clusters" "$sm" render ok.pvtu --clusters 0 --out a.png
 expect "--range" "$sm" render ok.pvtu --range -1e300,1e300 --out a.png
 expect "--opacity-scale" "$sm" render ok.pvtu --opacity-scale nan --out a.png
-# The option parser's own errors are one line too (with the exit status it gives).
-expect "--fovy" "$sm" render ok.pvtu --fovy abc --out a.png
+# The option parser's own errors are one line too, with the usage status 2.
+usage "--fovy" "$sm" render ok.pvtu --fovy abc --out a.png
 # bench render makes render's checks instead of measuring a bad value.
 expect "--opacity-scale" "$sm" bench render --mesh ok.pvtu --no-vtk --opacity-scale nan --work-dir bw
 expect "--step" "$sm" bench render --mesh ok.pvtu --no-vtk --step 0 --work-dir bw
@@ -132,18 +137,18 @@ if "$sm" info forged.vtu 2>/dev/null | grep -q '^shellmarch: error: forged'; the
 fi
 expect "ok.pvtu: its pieces are its clusters; a cluster array ('x')" "$sm" render ok.pvtu --cluster-array x --out a.png
 expect "--clusters and --cluster-array: give one" "$sm" render ok.pvtu --cluster-array x --clusters 2 --out a.png
-expect "--field: must not be empty" "$sm" render ok.pvtu --field '' --out a.png
-expect "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.png
+usage "--field: must not be empty" "$sm" render ok.pvtu --field '' --out a.png
+usage "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.png
 # No Vulkan driver at all (the loader finds none to load): said in words, not as a raw VkResult.
 # Without validation, whose messenger would add the loader's own lines.
 expect "no Vulkan driver could be loaded" env -u SHELLMARCH_VALIDATION VK_DRIVER_FILES=/nonexistent/icd.json \
   VK_ICD_FILENAMES=/nonexistent/icd.json "$sm" render ok.pvtu --out nodriver.png
 if [ -e nodriver.png ]; then echo "FAIL: an image was written without a driver"; fails=$((fails + 1)); fi
 # A benchmark's --json is checked before it measures anything.
-expect "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench prep --json nodir/x.json --no-vtk --work-dir bp
-expect "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw
+usage "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench prep --json nodir/x.json --no-vtk --work-dir bp
+usage "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw
 if [ -e bp ]; then echo "FAIL: bench prep worked before refusing --json"; fails=$((fails + 1)); fi
-expect "--screenshot: 'v.jpg' must end in .png" "$sm" view ok.pvtu --headless --frames 1 --screenshot v.jpg
+usage "--screenshot: 'v.jpg' must end in .png" "$sm" view ok.pvtu --headless --frames 1 --screenshot v.jpg
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

@@ -1,0 +1,26 @@
+# shellmarch_keep_modules_loaded(): in a sanitizer build, compiles src/common/keep_modules_loaded.cpp
+# (a dlclose() that unloads nothing; the file says why) into every executable defined so far, in
+# this directory and below. Call it last, after every add_subdirectory.
+function(_shellmarch_executables dir out)
+  get_property(targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
+  set(found "")
+  foreach(t IN LISTS targets)
+    get_target_property(type ${t} TYPE)
+    if(type STREQUAL "EXECUTABLE")
+      list(APPEND found ${t})
+    endif()
+  endforeach()
+  get_property(subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+  foreach(sub IN LISTS subdirs)
+    _shellmarch_executables("${sub}" below)
+    list(APPEND found ${below})
+  endforeach()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+function(shellmarch_keep_modules_loaded)
+  _shellmarch_executables("${CMAKE_CURRENT_SOURCE_DIR}" executables)
+  foreach(t IN LISTS executables)
+    target_sources(${t} PRIVATE "${PROJECT_SOURCE_DIR}/src/common/keep_modules_loaded.cpp")
+  endforeach()
+endfunction()
