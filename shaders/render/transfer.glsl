@@ -163,8 +163,8 @@ vec4 piInside(FrameParams fp, float sf, float sb, float L) {
   float ds = sb - sf;
   float mean;
   // A branch, not a selection, so that a SIMD batch whose pieces all change enough skips the
-  // transfer function's gathers.
-  float small = kLogScale ? max(sf, sb) : fp.piHi - fp.piLo;
+  // transfer function's gathers. The threshold is PreintegrationTable::kSmallDelta's (why there).
+  float small = kLogScale ? max(sf, sb) * log(fp.piHi / fp.piLo) : fp.piHi - fp.piLo;
   if (abs(ds) > 1e-3 * small) mean = (piCumulativeAt(fp, sb) - piCumulativeAt(fp, sf)) / ds;
   else mean = transferLookup(fp, 0.5 * (sf + sb)).a * fp.sigmaScale;
   float alpha = 1.0 - exp(-L * max(mean, 0.0));

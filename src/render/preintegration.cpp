@@ -76,7 +76,8 @@ glm::dvec3 PreintegrationTable::colorAt(double sf, double sb, double L) const {
 
 glm::dvec4 PreintegrationTable::integrateInside(double sf, double sb, double L) const {
   double ds = sb - sf;
-  const double small = scale == scene::ScalarScale::Log ? std::max(sf, sb) : hi - lo;
+  const double small =
+      scale == scene::ScalarScale::Log ? std::max(sf, sb) * std::log(hi / lo) : hi - lo;
   double mean = std::abs(ds) > kSmallDelta * small ? (cumulativeAt(sb) - cumulativeAt(sf)) / ds
                                                    : sigmaAt(0.5 * (sf + sb));
   double alpha = 1.0 - std::exp(-L * std::max(mean, 0.0));
