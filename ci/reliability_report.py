@@ -96,14 +96,16 @@ def times(path):
 
 
 def junit(path):
-    """JUnit from ctest -> [(name, passed, seconds, output)], or None."""
+    """JUnit from ctest -> [(name, passed, seconds, output, skipped)], or None. Skipped: the test
+    skipped itself (GTEST_SKIP; ctest's status "notrun"), neither passed nor failed."""
     if not os.path.exists(path):
         return None
     cases = []
     for c in ET.parse(path).getroot().iter("testcase"):
         out = c.find("system-out")
         cases.append((c.get("name"), c.get("status") == "run", float(c.get("time", 0)),
-                      out.text if out is not None and out.text else ""))
+                      out.text if out is not None and out.text else "",
+                      c.get("status") == "notrun"))
     return cases
 
 
@@ -211,12 +213,22 @@ def sanitize_section(md):
               "abort).\n")
     md.append("Leaks: the unit tests run with LeakSanitizer on; ci/lsan.supp suppresses %s only "
               "(third-party lifetime allocations, matched by library name, never by shellmarch "
-              "code). The `mpi` tests run with `detect_leaks=0`: they load the Vulkan driver, and"
-              " the Vulkan loader unloads the driver and the validation layer (`dlclose`), as MPI"
-              " unloads its components, before LeakSanitizer reports at exit, so those "
-              "allocations carry no module name a suppression could match (checked: the "
-              "validation layer's leaks, once the layer is kept loaded, are all inside "
-              "`libVkLayer_khronos_validation.so`). Every other check stays on for them.\n"
+              "code). Every executable of a sanitizer build carries a `dlclose()` that unloads "
+              "nothing (src/common/keep_modules_loaded.cpp, added by "
+              "cmake/SanitizerKeepModules.cmake): the Vulkan loader would otherwise unload the "
+              "validation layer and the driver before LeakSanitizer reports at exit, leaving "
+              "their allocations with no module name to match (`<unknown module>`), and "
+              "LeakSanitizer's tracer scanning thread state of unloaded code. That tracer crashed "
+              "in CI (`Tracer caught signal 11` in `ScanRangeForPointers`) after "
+              "`app.cli-errors`'s `--k` command had printed its error, three runs in a row, and "
+              "never when the test was run alone. The command-line error tests want exit status "
+              "1 exactly (2 for a command line the option parser refuses): before, any non-zero "
+              "status passed, a sanitizer's abort (134) after the right message included, so an "
+              "error path's leak or memory error went unseen. The `mpi` tests run with "
+              "`detect_leaks=0`: Open MPI keeps allocations for the process's life, some made "
+              "through libc calls that the fast unwinder cannot walk out of (no Open MPI frame "
+              "names them for a suppression), and with the slow unwinder `CompositorMpi.2ranks` "
+              "did not finish in 15 minutes. Every other check stays on for them.\n"
               % ", ".join("`%s`" % x for x in supp))
     cases = []
     found = False
@@ -231,9 +243,12 @@ def sanitize_section(md):
         md.append("No results: run `ci/sanitize.sh`.\n")
         return None
     passed = sum(1 for c in cases if c[1])
-    line = "%d of %d tests passed." % (passed, len(cases))
-    for name, ok, secs, out in cases:
-        if not ok:
+    skipped = [c[0] for c in cases if c[4]]
+    line = "%d of %d tests passed." % (passed, len(cases) - len(skipped))
+    if skipped:
+        line += " Skipped by the test itself: %s." % ", ".join("`%s`" % n for n in skipped)
+    for name, ok, secs, out, skip in cases:
+        if not ok and not skip:
             why = first_line(out, r"ERROR: (Address|Leak)Sanitizer|runtime error|FAILED")
             line += " Failed: `%s`%s." % (name, " (%s)" % why if why else "")
     for key, label in (("build", "Build"), ("unit", "Unit tests"), ("mpi", "MPI tests")):
@@ -246,7 +261,7 @@ def sanitize_section(md):
               "`memcpy` when hashing an empty array (cache keys of meshes without some element "
               "type; src/common/hash.cpp), and the compositor tests' reference model took "
               "`&v[i]` of empty fragment vectors (tests/compositor/fragment_model.cpp).\n")
-    return passed, len(cases)
+    return passed, len(cases) - len(skipped)
 
 
 LIMITS = [
