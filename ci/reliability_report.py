@@ -335,7 +335,11 @@ def faults_section(md, rel, rel_path):
               "`Reliability.data` fixture generates a 4 857-element capsule in 3 pieces with 3 "
               "time steps). A hang is a `timeout` (240 s), never waited out; the time from the "
               "injected fault (which logs its wall-clock time) to the end of every rank is "
-              "measured and must stay under a minute.\n")
+              "measured and must stay under a minute. A third point holds a time step read "
+              "ahead (`at=read-ahead,action=stall`) until the reader stops it: the viewer test "
+              "`ViewerHeadless.ClosingOrJumpingStopsTheStepReadAhead` closes the viewer, and "
+              "jumps to another step, while such a read runs, and must end at once with both "
+              "reads stopped (`io::ReadOptions::stopRequested`) instead of waiting for them.\n")
     md.append("Every output (PNG, cache, .vtu/.pvtu, statistics JSON) goes through "
               "`sm::writeFileAtomically`: written under `NAME.tmp.PID.N` and renamed when "
               "complete, so a name never holds a partial file. A process killed mid-write leaves"

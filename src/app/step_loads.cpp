@@ -1,5 +1,6 @@
 #include "app/step_loads.h"
 
+#include "common/fault_injection.h"
 #include "common/timer.h"
 
 namespace sm::app {
@@ -9,7 +10,7 @@ render::ScalarSwitch StepLoads::loadFor(const std::string& field, uint64_t step)
   ahead_.reset();
   if (prefetcher_.pending()) return prefetcher_.swap();
   if (cellsAhead_.valid()) return takeCells();
-  return prefetcher_.loadNow(load(field, step, 0));
+  return prefetcher_.loadNow(load(field, step, false));
 }
 
 render::ScalarSwitch StepLoads::takeCells() {
@@ -30,30 +31,46 @@ void StepLoads::prefetch(const std::string& field, uint64_t step) {
   discard();
   ahead_.emplace(field, step);
   if (!source_.collective()) {
-    prefetcher_.prefetch(load(field, step, 1));
+    prefetcher_.prefetch(load(field, step, true));
     return;
   }
-  cellsAhead_ = std::async(std::launch::async, [&source = source_, field, step] {
-    Timer t;
-    CellsRead r{source.readCells(field, step, 1), 0.0};
-    r.ms = t.ms();
-    return r;
+  cellsAhead_ = std::async(std::launch::async, [this, field, step] {
+    return countingStops([&] {
+      const io::StopRequested stop = stopRequested();
+      fault::atReadAhead(stop);
+      Timer t;
+      CellsRead r{source_.readCells(field, step, 1, stop), 0.0};
+      r.ms = t.ms();
+      return r;
+    });
   });
 }
 
 void StepLoads::discard() {
   ahead_.reset();
+  stop_ = true;
   prefetcher_.discard();
   if (cellsAhead_.valid()) {
     cellsAhead_.wait();
-    cellsAhead_ = {};  // a stored error goes with it
+    cellsAhead_ = {};  // a stored error (io::ReadStopped, most likely) goes with it
   }
+  stop_ = false;
 }
 
+io::StopRequested StepLoads::stopRequested() const {
+  return [&stop = stop_] { return stop.load(std::memory_order_relaxed); };
+}
+
+// Ahead: on one thread (leaving the cores to the frame), stoppable; now: on every core.
 render::ScalarPrefetcher::Load StepLoads::load(const std::string& field, uint64_t step,
-                                               unsigned threads) const {
-  return [&source = source_, &rank = rank_, field, step, threads] {
-    return source.scalars(rank, field, step, threads);
+                                               bool ahead) {
+  if (!ahead) return [this, field, step] { return source_.scalars(rank_, field, step); };
+  return [this, field, step] {
+    return countingStops([&] {
+      const io::StopRequested stop = stopRequested();
+      fault::atReadAhead(stop);
+      return source_.scalars(rank_, field, step, 1, stop);
+    });
   };
 }
 

@@ -5,6 +5,7 @@
 // it runs when the frame starts.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <future>
 #include <optional>
@@ -22,31 +23,52 @@ class StepLoads {
   // All three must outlive the loads.
   StepLoads(const StepSource& source, const prep::PreparedRank& rank, render::GpuScene& gpu)
       : source_(source), rank_(rank), prefetcher_(gpu) {}
+  // A read still running ahead is stopped, not waited for to the end (closing the viewer).
+  ~StepLoads() { discard(); }
+  StepLoads(const StepLoads&) = delete;
+  StepLoads& operator=(const StepLoads&) = delete;
 
   // Before a frame of `field`'s `step`: from the prefetch when it loaded that step, otherwise now
-  // (a prefetch of another step is waited for and dropped first). Collective for a collective
+  // (a prefetch of another step is stopped and dropped first). Collective for a collective
   // source.
   render::ScalarSwitch loadFor(const std::string& field, uint64_t step);
   // While a frame renders, the next one's step (one thread, leaving the cores to the frame). A
   // prefetch of that step already under way is kept; one of another step is dropped.
   void prefetch(const std::string& field, uint64_t step);
-  // Waits for a prefetch under way and drops it, errors included: its step is not shown.
+  // Stops a prefetch under way (its read ends at the next piece, file, section or compressed
+  // block: io::ReadOptions::stopRequested), waits for it and drops it, errors included: its step
+  // is not shown.
   void discard();
+  // Reads ahead that discard() stopped before they ended.
+  uint64_t stoppedReads() const { return stoppedReads_; }
 
  private:
   struct CellsRead {
     std::vector<float> values;
     double ms;
   };
-  render::ScalarPrefetcher::Load load(const std::string& field, uint64_t step,
-                                      unsigned threads) const;
+  render::ScalarPrefetcher::Load load(const std::string& field, uint64_t step, bool ahead);
+  // Runs a read ahead, counting it when discard() stopped it.
+  template <class Read>
+  auto countingStops(Read&& read) {
+    try {
+      return read();
+    } catch (const io::ReadStopped&) {
+      ++stoppedReads_;
+      throw;
+    }
+  }
   render::ScalarSwitch takeCells();
+  io::StopRequested stopRequested() const;
 
   const StepSource& source_;
   const prep::PreparedRank& rank_;
   render::ScalarPrefetcher prefetcher_;
   std::future<CellsRead> cellsAhead_;
   std::optional<std::pair<std::string, uint64_t>> ahead_;  // the step a prefetch is loading
+  // Set while discard() stops the read ahead; reading threads poll it (hence atomic).
+  std::atomic<bool> stop_{false};
+  std::atomic<uint64_t> stoppedReads_{0};
 };
 
 }  // namespace sm::app

@@ -47,12 +47,13 @@ void StepSource::warnNonFinite(const char* what, const std::string& field, uint6
                " non-finite values; they render transparent");
 }
 
-std::vector<float> StepSource::readCells(const std::string& field, uint64_t step,
-                                         unsigned threads) const {
+std::vector<float> StepSource::readCells(const std::string& field, uint64_t step, unsigned threads,
+                                         const io::StopRequested& stop) const {
   const StepStream& s = *share_.stream;
   if (s.cells->numCells() == 0) return {};  // no pieces: reads nothing (but averages, collectively)
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
+  o.stopRequested = stop;
   // Every cell of the pieces, then this rank's elements among them: a file that changed since it
   // was loaded shows in the count.
   const std::vector<float> all = io::readCellFieldStep(path_, field, step, o);
@@ -72,12 +73,13 @@ std::vector<float> StepSource::scalarsFromCells(const prep::PreparedRank& rank,
   return prep::gatherScalars(rank, points);
 }
 
-std::vector<float> StepSource::read(const std::string& field, uint64_t step,
-                                    unsigned threads) const {
+std::vector<float> StepSource::read(const std::string& field, uint64_t step, unsigned threads,
+                                    const io::StopRequested& stop) const {
   const StepStream& s = *share_.stream;
-  if (collective()) return s.cells->toPoints(readCells(field, step, threads), coll_);
+  if (collective()) return s.cells->toPoints(readCells(field, step, threads, stop), coll_);
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
+  o.stopRequested = stop;
   std::vector<float> v = io::readFieldStep(path_, field, step, o, s.filePoints);
   warnNonFinite("field", field, step, v);
   if (v.size() != numPoints_)  // the file changed since it was loaded
@@ -99,8 +101,9 @@ mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
 }
 
 std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std::string& field,
-                                       uint64_t step, unsigned threads) const {
-  if (collective()) return scalarsFromCells(rank, readCells(field, step, threads));
+                                       uint64_t step, unsigned threads,
+                                       const io::StopRequested& stop) const {
+  if (collective()) return scalarsFromCells(rank, readCells(field, step, threads, stop));
   if (rank.numVertices() == 0) return {};
   const uint64_t n = numSteps(field);
   if (n == 0) {
@@ -117,7 +120,7 @@ std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std
     throw Error("--time: field '", field, "' has ", n, " time steps (0 .. ", n - 1, "), not step ",
                 step);
   if (!share_.stream) return prep::gatherScalars(rank, share_.mesh.findField(field)->steps[step]);
-  return prep::gatherScalars(rank, read(field, step, threads));
+  return prep::gatherScalars(rank, read(field, step, threads, stop));
 }
 
 }  // namespace sm::app

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/rank_share.h"
+#include "io/read_stop.h"
 #include "prep/prepared_rank.h"
 
 namespace sm::app {
@@ -34,18 +35,21 @@ class StepSource {
   // One step in `rank`'s vertex order (empty for a rank without vertices); throws naming --field
   // when the field is missing, as app::fieldStep does. Reads files only, so it may run on a
   // thread of its own while frames render. `threads` decompress and convert (0: the read
-  // options' count).
+  // options' count); `stop` ends a read no longer wanted with io::ReadStopped.
   std::vector<float> scalars(const prep::PreparedRank& rank, const std::string& field,
-                             uint64_t step, unsigned threads = 0) const;
+                             uint64_t step, unsigned threads = 0,
+                             const io::StopRequested& stop = {}) const;
 
   // A streamed cell field's step, one value per element of this rank (file reads only: any
   // thread), and the collective rest of scalars().
-  std::vector<float> readCells(const std::string& field, uint64_t step, unsigned threads = 0) const;
+  std::vector<float> readCells(const std::string& field, uint64_t step, unsigned threads = 0,
+                               const io::StopRequested& stop = {}) const;
   std::vector<float> scalarsFromCells(const prep::PreparedRank& rank,
                                       std::span<const float> cells) const;
 
  private:
-  std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0) const;
+  std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0,
+                          const io::StopRequested& stop = {}) const;
   // Loading warned about step 0's non-finite values; streamed steps warn here, once each.
   void warnNonFinite(const char* what, const std::string& field, uint64_t step,
                      const std::vector<float>& values) const;

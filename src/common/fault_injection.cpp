@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "common/error.h"
 
@@ -32,9 +33,9 @@ std::optional<Spec> parse(const char* text) {
     const size_t eq = item.find('=');
     const std::string key = item.substr(0, eq), value = eq == item.npos ? "" : item.substr(eq + 1);
     uint64_t n = 0;
-    if (key == "at" && (value == "frame" || value == "write"))
+    if (key == "at" && (value == "frame" || value == "write" || value == "read-ahead"))
       s.at = value;
-    else if (key == "action" && (value == "kill" || value == "throw"))
+    else if (key == "action" && (value == "kill" || value == "throw" || value == "stall"))
       s.action = value;
     else if (key == "match")
       s.match = value;
@@ -44,9 +45,12 @@ std::optional<Spec> parse(const char* text) {
       s.frame = n;
     else
       throw Error("SHELLMARCH_FAULT: cannot use '", item,
-                  "' (at=frame|write, action=kill|throw, rank=R, frame=N, match=TEXT)");
+                  "' (at=frame|write|read-ahead, action=kill|throw|stall, rank=R, frame=N, "
+                  "match=TEXT)");
   }
   if (s.at.empty() || s.action.empty()) throw Error("SHELLMARCH_FAULT: needs at= and action=");
+  if ((s.action == "stall") != (s.at == "read-ahead"))
+    throw Error("SHELLMARCH_FAULT: action=stall goes with at=read-ahead, and only it");
   return s;
 }
 
@@ -64,14 +68,18 @@ int processRank() {
   return 0;
 }
 
-void fire(const Spec& s, const std::string& where) {
-  if (s.rank && *s.rank != processRank()) return;
+void announce(const Spec& s, const std::string& where) {
   // The wall-clock time lets a test tell how long the other ranks took to end after it.
   const double now =
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   std::fprintf(stderr, "shellmarch: fault injection: %s on rank %d %s at %.3f s (epoch)\n",
                s.action.c_str(), processRank(), where.c_str(), now);
   std::fflush(stderr);
+}
+
+void fire(const Spec& s, const std::string& where) {
+  if (s.rank && *s.rank != processRank()) return;
+  announce(s, where);
   if (s.action == "kill") std::raise(SIGKILL);
   throw Error("injected fault on rank ", processRank(), " ", where);
 }
@@ -87,6 +95,16 @@ void atWrite(const std::string& path) {
   const auto& s = spec();
   if (s && s->at == "write" && path.find(s->match) != std::string::npos)
     fire(*s, concat("while writing ", path));
+}
+
+void atReadAhead(const std::function<bool()>& stopped) {
+  const auto& s = spec();
+  if (!s || s->at != "read-ahead" || (s->rank && *s->rank != processRank())) return;
+  announce(*s, "in a read ahead");
+  // A minute, not forever: a reader that never stops it shows as a slow test, not a hung one.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!(stopped && stopped()) && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
 }
 
 }  // namespace sm::fault

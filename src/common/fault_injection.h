@@ -6,18 +6,26 @@
 //       at the start of the N-th frame a render draws (0 = the first), after the scene is built
 //   SHELLMARCH_FAULT=at=write[,match=SUBSTRING][,rank=R],action=kill|throw
 //       halfway through writing an output file (PNG, cache, mesh, JSON) under its temporary name
+//   SHELLMARCH_FAULT=at=read-ahead[,rank=R],action=stall
+//       a time step read ahead while a frame renders (the viewer's play, render --time all) does
+//       not start until the reader stops it or a minute passes: a read that is still running
+//       when the viewer closes or jumps to another step, however fast the disk
 //
-// kill raises SIGKILL (a crash or the kernel's OOM killer: nothing runs after it); throw raises
-// sm::Error("injected fault ..."), the path of any ordinary error. The rank is the process's MPI
-// rank as the launcher sets it (0 without one); no rank= means every rank.
+// stall applies to at=read-ahead only. kill raises SIGKILL (a crash or the kernel's OOM killer:
+// nothing runs after it); throw raises sm::Error("injected fault ..."), the path of any ordinary
+// error. The rank is the process's MPI rank as the launcher sets it (0 without one); no rank= means
+// every rank.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace sm::fault {
 
 void atFrame(uint64_t frame);
 void atWrite(const std::string& path);
+// On the read-ahead thread, before the read; `stopped` is the read's stop request.
+void atReadAhead(const std::function<bool()>& stopped);
 
 }  // namespace sm::fault

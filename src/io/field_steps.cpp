@@ -165,9 +165,10 @@ std::vector<FieldStepCount> stepsOfMesh(const mesh::UnstructuredMesh& m) {
 enum class Data { Points, Cells };
 
 std::vector<float> vtuFieldStep(const std::string& file, const std::string& field, uint64_t step,
-                                unsigned threads, Data data) {
+                                const ReadOptions& options, Data data) {
+  throwIfStopped(options.stopRequested, file);
   FileBytes bytes = FileBytes::openLazily(file);
-  VtuDocument doc(bytes, file, "UnstructuredGrid", threads);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads, options.stopRequested);
   std::vector<VtuPiece> pieces = vtuPieces(doc);
   const bool cells = data == Data::Cells;
   const std::vector<ArrayInfo> pointArrays = vtuPointArrays(doc, pieces[0]);
@@ -199,7 +200,7 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
     if (!a) throw FileError(file, "a piece lacks the ", what);
     std::vector<float> v =
         toFloats(doc.decode(a, cells ? p.numCells : p.numPoints, what, info.components),
-                 load->component, threads);
+                 load->component, options.threads);
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;
@@ -210,7 +211,7 @@ std::vector<float> pvtuFieldStep(const std::string& path, const std::string& fie
   const std::vector<std::string> files = pvtuPieceFiles(path);
   std::vector<float> values;
   for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
-    std::vector<float> v = vtuFieldStep(files[i], field, step, options.threads, data);
+    std::vector<float> v = vtuFieldStep(files[i], field, step, options, data);
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;
@@ -265,7 +266,7 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
   const std::string ext = fileExtension(path);
   std::vector<float> values;
   if (ext == ".vtu")
-    values = vtuFieldStep(path, field, step, options.threads, Data::Points);
+    values = vtuFieldStep(path, field, step, options, Data::Points);
   else if (isPieceIndex(path))
     values = pvtuFieldStep(path, field, step, options, Data::Points);
   else if (isSeries(path))
@@ -280,7 +281,7 @@ std::vector<float> readCellFieldStep(const std::string& path, const std::string&
                                      std::span<const uint32_t> cellMap) {
   std::vector<float> values;
   if (fileExtension(path) == ".vtu")
-    values = vtuFieldStep(path, field, step, options.threads, Data::Cells);
+    values = vtuFieldStep(path, field, step, options, Data::Cells);
   else if (isPieceIndex(path))
     values = pvtuFieldStep(path, field, step, options, Data::Cells);
   else if (isSeries(path))

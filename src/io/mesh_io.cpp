@@ -84,6 +84,7 @@ std::string firstFile(const std::string& path) {
 }  // namespace
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options) {
+  throwIfStopped(options.stopRequested, path);
   return withCellDataOnPoints(readAnyMesh(path, options), options.cellDataOnPoints);
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "io/read_stop.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::io {
@@ -48,6 +49,10 @@ struct ReadOptions {
   // .vtu, .pvtu and series of them: record where each element came from (mesh.cellOrigin), so
   // that later steps of cell data can be read alone (readCellFieldStep).
   bool cellOrigins = false;
+  // Stops the read with io::ReadStopped (read_stop.h) once it returns true. It is asked before
+  // each piece, each file of a series, each section of a legacy or .ugrid file and each
+  // compressed block, so a stop waits for one such unit of work at most.
+  StopRequested stopRequested;
 };
 
 mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& options = {});

@@ -186,6 +186,7 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
   const bool fromFiles = open.target<FileBytes (*)(const std::string&)>() != nullptr;
   if (options.loadFields && files.size() > 1 && (options.step || fromFiles))
     listFieldSteps(path, options);
+  throwIfStopped(options.stopRequested, path);
   return weldPieces(path, std::move(pieces));
 }
 

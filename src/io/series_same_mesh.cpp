@@ -19,16 +19,16 @@ namespace sm::io {
 namespace {
 
 // A .vtu's points and cells, every piece in order, decoded as the reader decodes them.
-void appendVtuMesh(const std::string& file, unsigned threads, StepMesh& out) {
+void appendVtuMesh(const std::string& file, const ReadOptions& options, StepMesh& out) {
   FileBytes bytes = FileBytes::openLazily(file);
-  VtuDocument doc(bytes, file, "UnstructuredGrid", threads);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads, options.stopRequested);
   uint64_t points = 0, cells = 0;
   for (const VtuPiece& p : vtuPieces(doc)) {
     if (p.numPoints > 0) {
       pugi::xml_node arr = p.node.child("Points").child("DataArray");
       if (!arr) throw FileError(file, "has a piece of ", p.numPoints, " points but no <Points>");
       const std::vector<glm::dvec3> pts =
-          toPoints(doc.decode(arr, p.numPoints, "points", 3), threads);
+          toPoints(doc.decode(arr, p.numPoints, "points", 3), options.threads);
       out.points.insert(out.points.end(), pts.begin(), pts.end());
       points += pts.size();
     }
@@ -107,7 +107,7 @@ uint64_t encodedDigestOf(const std::string& file, const ReadOptions& options) {
   Hasher h;
   for (const std::string& f : files) {
     FileBytes bytes = FileBytes::openLazily(f);
-    VtuDocument doc(bytes, f, "UnstructuredGrid", options.threads);
+    VtuDocument doc(bytes, f, "UnstructuredGrid", options.threads, options.stopRequested);
     for (const VtuPiece& p : vtuPieces(doc)) {
       h.pod(p.numPoints).pod(p.numCells);
       std::vector<pugi::xml_node> arrays;
@@ -194,14 +194,14 @@ std::string cellText(const StepCells& c, uint64_t i) {
 StepMesh readStepMesh(const std::string& file, const ReadOptions& options) {
   if (fileExtension(file) == ".vtu") {
     StepMesh out;
-    appendVtuMesh(file, options.threads, out);
+    appendVtuMesh(file, options, out);
     return out;
   }
   if (isPieceIndex(file)) {
     StepMesh out;
     const std::vector<std::string> files = pvtuPieceFiles(file);
     for (int i : pvtuChosenPieces(file, int(files.size()), options))
-      appendVtuMesh(files[size_t(i)], options.threads, out);
+      appendVtuMesh(files[size_t(i)], options, out);
     return out;
   }
   ReadOptions o = options;

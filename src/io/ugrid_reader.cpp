@@ -75,11 +75,14 @@ class UgridReader {
   mesh::UnstructuredMesh read() {
     chooseClusterArray(src_, {},
                        options_);  // UGRID has no cell arrays: a requested one is an error
+    throwIfStopped(options_.stopRequested, src_);
     if (variant_.ascii)
       readAscii();
     else
       readBinary();
+    throwIfStopped(options_.stopRequested, src_);
     if (sideFiles_) readSideFields();
+    throwIfStopped(options_.stopRequested, src_);
     return builder_.finish();
   }
 

@@ -85,6 +85,7 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
       static_cast<int64_t>(nBlocks),
       [&](int64_t b0, int64_t b1) {
         for (int64_t b = b0; b < b1; ++b) {
+          throwIfStopped(f.stop, source);
           const uint64_t want = (uint64_t(b) + 1 == nBlocks && lastSize) ? lastSize : blockSize;
           uLongf got = want;
           int rc = uncompress(out + uint64_t(b) * blockSize, &got, comp + compOffset[b],
@@ -126,6 +127,7 @@ uint64_t PayloadSource::maxRemaining() const {
 
 Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,
                     const std::string& source, const std::string& what) {
+  throwIfStopped(format.stop, source);
   return format.compressor == Compressor::ZLib
              ? readZlib(src, format, expectedBytes, source, what)
              : readUncompressed(src, format, expectedBytes, source, what);

@@ -14,6 +14,7 @@
 
 #include "io/base64.h"
 #include "io/numeric_array.h"
+#include "io/read_stop.h"
 
 namespace sm::io {
 
@@ -24,6 +25,7 @@ struct BinaryFormat {
   bool swap = false;      // byte_order is not the host's
   Compressor compressor = Compressor::None;
   unsigned threads = 0;  // inflating blocks (0: all cores)
+  StopRequested stop;    // asked before each compressed block (ReadOptions::stopRequested)
 };
 
 // Sequential reader over raw bytes or base64 text.

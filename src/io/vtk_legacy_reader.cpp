@@ -35,7 +35,11 @@ class LegacyReader {
 
   mesh::UnstructuredMesh read() {
     readHeader();
-    for (std::string_view w = in_.token(); !w.empty(); w = in_.token()) section(lowerCase(w));
+    for (std::string_view w = in_.token(); !w.empty(); w = in_.token()) {
+      throwIfStopped(options_.stopRequested, src_);
+      section(lowerCase(w));
+    }
+    throwIfStopped(options_.stopRequested, src_);
     return build();
   }
 

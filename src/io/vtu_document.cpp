@@ -32,9 +32,11 @@ void checkPieceIsNotAnIndex(std::span<const uint8_t> bytes, const std::string& s
     throw FileError(source, "is itself a .pvtu index, named as a piece: pieces must be .vtu files");
 }
 
-VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads)
+VtuDocument::VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads,
+                         StopRequested stop)
     : source_(std::move(source)) {
   format_.threads = threads;
+  format_.stop = std::move(stop);
   parse(bytes, type);
 }
 
@@ -136,6 +138,7 @@ uint32_t VtuDocument::components(pugi::xml_node node, const std::string& what) c
 
 NumericArray VtuDocument::decode(pugi::xml_node node, uint64_t tuples, const std::string& what,
                                  uint32_t wantComponents) const {
+  throwIfStopped(format_.stop, source_);
   std::string_view typeName = node.attribute("type").value();
   auto type = scalarTypeFromXml(typeName);
   if (!type) throw FileError(source_, what, ": unsupported array type '", printable(typeName), "'");

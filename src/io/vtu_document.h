@@ -26,7 +26,9 @@ class VtuDocument {
  public:
   // Parses bytes (in place: bytes must outlive the document). `type` is the VTKFile type this
   // reader expects ("UnstructuredGrid"); throws sm::FileError for anything else.
-  VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads = 0);
+  // `threads` inflate compressed arrays; `stop` is asked before each array and compressed block.
+  VtuDocument(FileBytes& bytes, std::string source, const char* type, unsigned threads = 0,
+              StopRequested stop = {});
   VtuDocument(const VtuDocument&) = delete;
   VtuDocument& operator=(const VtuDocument&) = delete;
 

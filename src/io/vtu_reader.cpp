@@ -242,7 +242,7 @@ class VtuReader {
 mesh::UnstructuredMesh readVtu(FileBytes bytes, const std::string& source,
                                const ReadOptions& options, std::optional<int32_t> pieceCluster) {
   if (pieceCluster) checkPieceIsNotAnIndex(bytes.span(), source);
-  VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads);
+  VtuDocument doc(bytes, source, "UnstructuredGrid", options.threads, options.stopRequested);
   return VtuReader(doc, options, pieceCluster).read();
 }
 

@@ -4,6 +4,7 @@
 // Every run has the validation layer on (SHELLMARCH_VALIDATION=1 from ctest) and must report
 // no error.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -210,6 +211,39 @@ TEST(ViewerHeadless, PlayShowsAStepAFrameReadAhead) {
   EXPECT_EQ(r.err, "shellmarch: error: " + dir +
                        "/cube/cube_0.vtu: point array 'vortex@t2': compressed block 0 is corrupt "
                        "(zlib: data error)\n");
+}
+
+// Closing the viewer, or jumping to another step, while a step is read ahead stops that read
+// instead of waiting for it to end. The fault holds every read ahead until it is stopped or a
+// minute passes, so the viewer can end quickly, with its reads ahead counted as stopped, only
+// when both stop them (without the stop it would end after two minutes, none stopped).
+TEST(ViewerHeadless, ClosingOrJumpingStopsTheStepReadAhead) {
+  const std::string dir = outputDir("ViewerHeadless.StopReadAhead");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string view = headlessView(mesh, "32x24");
+  // Space plays step 0 and reads 1 ahead; left jumps to step 2 (3 steps) while 1 is still being
+  // read, and reads 0 ahead; quit comes while 0 is being read.
+  const std::string script =
+      writeFile(dir, "jump.txt", "key space\nframe\nkey left\nframe\nquit\n");
+  const auto start = std::chrono::steady_clock::now();
+  CommandResult r = runCommand("SHELLMARCH_FAULT=at=read-ahead,action=stall " + view +
+                                   "--range 0,1 --script " + quote(script),
+                               dir, "jump");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation error"), std::string::npos) << r.err;
+  // Both reads ahead were held (and so were running when stopped).
+  size_t held = 0;
+  for (size_t at = r.err.find("stall on rank 0 in a read ahead"); at != std::string::npos;
+       at = r.err.find("stall on rank 0 in a read ahead", at + 1))
+    ++held;
+  EXPECT_EQ(held, 2u) << r.err;
+  const nlohmann::json j = lastJson(r.out);
+  EXPECT_EQ(j["stopped_reads"], 2) << r.out;
+  EXPECT_EQ(j["time"], 2);
+  EXPECT_EQ(j["prefetched_steps"], 0);
+  EXPECT_LT(seconds, 30.0) << "a held read was waited for";
 }
 
 // --fps holds each played step on screen for 1/F s at least (the viewer measures how long each

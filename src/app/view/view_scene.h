@@ -63,6 +63,9 @@ class ViewScene {
   uint64_t prefetchedSteps() const { return prefetchedSteps_; }
   double scalarWaitMs() const { return scalarWaitMs_; }
   double scalarLoadMs() const { return scalarLoadMs_; }
+  // Stops a step read ahead (closing); how many reads ahead were stopped before they ended.
+  void stopReadAhead() { loads_->discard(); }
+  uint64_t stoppedReads() const { return loads_->stoppedReads(); }
   double loadSeconds() const { return loadSeconds_; }
   double prepareSeconds() const { return prepareSeconds_; }
 

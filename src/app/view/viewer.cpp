@@ -90,6 +90,7 @@ class Viewer {
   uint32_t framesShown_ = 0;
   uint32_t reducedFrames_ = 0;  // frames rendered at a reduced size while the camera moved
   ViewState shownState_;        // the state of the frame shown last
+  uint64_t stoppedReads_ = 0;   // reads ahead stopped unfinished (finish(): summed over ranks)
   bool quitPending_ = false;    // quit after the full-size frame that replaces a reduced last one
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
@@ -383,6 +384,7 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["geometry_builds"] = scene_->gpu().geometryBuilds();
   j["scalar_uploads"] = scene_->gpu().scalarUploads();
   j["prefetched_steps"] = scene_->prefetchedSteps();
+  j["stopped_reads"] = stoppedReads_;  // over all ranks
   j["scalar_wait_ms"] = scene_->scalarWaitMs();
   j["scalar_load_ms"] = scene_->scalarLoadMs();
   // What `shellmarch render` needs, besides the data options given to view, for this frame.
@@ -415,6 +417,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
 }
 
 void Viewer::finish() {
+  // First, so that closing never waits for a step that will not be shown to be read.
+  scene_->stopReadAhead();
   if (root()) {
     if (!options_.screenshot.empty()) local_.screenshots.push_back(options_.screenshot);
     if (lastPixels_.empty() && !local_.screenshots.empty())
@@ -422,6 +426,7 @@ void Viewer::finish() {
     writeScreenshots();
   }
   const uint64_t errors = coll_.sum(scene_->context().validationErrors());
+  stoppedReads_ = coll_.sum(scene_->stoppedReads());
   const StateWaits waits = otherRanksStateWaits();
   if (root() && options_.printCamera) {
     std::printf("%s\n", report(errors, waits).dump().c_str());
