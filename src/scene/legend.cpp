@@ -1,7 +1,7 @@
 #include "scene/legend.h"
 
 #include <algorithm>
-#include <array>
+#include <cmath>
 #include <cstdio>
 
 #include "scene/bitmap_font.h"
@@ -15,13 +15,40 @@ std::string label(double v) {
   return buf;
 }
 
-// hi, middle, lo: top to bottom, as the bar runs; the middle is the value at the bar's middle
-// (on a log scale, the geometric mean).
-std::array<std::string, 3> labels(const TransferFunction& tf) {
-  return {label(tf.hi), label(tf.valueAt(0.5)), label(tf.lo)};
+// Powers of ten strictly inside a log scale's range, bottom to top, given rows `spacing` pixels
+// apart at the least for labels and `tickSpacing` for ticks alone. Empty when none.
+std::vector<LegendTick> decades(const TransferFunction& tf, double barPixels, double spacing,
+                                double tickSpacing) {
+  const double span = std::log10(tf.hi) - std::log10(tf.lo);
+  if (!(tf.lo > 0.0) || !(span > 0.0) || !std::isfinite(span)) return {};
+  // A decade within a hair of an end is that end, labelled already.
+  const double eps = 1e-9 * span;
+  const int first = int(std::ceil(std::log10(tf.lo) + eps)),
+            last = int(std::floor(std::log10(tf.hi) - eps));
+  if (first > last) return {};
+  const double perDecade = barPixels / span;
+  // Labels on every n-th decade (multiples of n, so that they read as a sequence).
+  const int every = std::max(1, int(std::ceil(spacing / perDecade)));
+  const bool ticks = perDecade >= tickSpacing;
+  std::vector<LegendTick> out;
+  for (int e = first; e <= last; ++e) {
+    const double at = (double(e) - std::log10(tf.lo)) / span;
+    // Clear of the ends' labels too.
+    const bool room = at * barPixels >= spacing && (1.0 - at) * barPixels >= spacing;
+    const bool labelled = room && e % every == 0;
+    if (labelled || ticks) out.push_back({at, labelled ? label(std::pow(10.0, e)) : ""});
+  }
+  return out;
 }
 
-// The title as drawn: a log scale says so, since its middle label is the geometric mean.
+std::vector<std::string> labelTexts(const TransferFunction& tf, int barHeight, int scale) {
+  std::vector<std::string> texts;
+  for (const LegendTick& t : legendTicks(tf, barHeight, scale))
+    if (!t.text.empty()) texts.push_back(t.text);
+  return texts;
+}
+
+// The title as drawn: a log scale says so (its marks are decades, or the geometric mean).
 std::string shownTitle(const TransferFunction& tf, const std::string& title) {
   return tf.scale == ScalarScale::Log ? title + " (log)" : title;
 }
@@ -38,15 +65,28 @@ glm::vec3 tableColor(const TransferFunction& tf, double x) {
 
 }  // namespace
 
+std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, int scale) {
+  const double pixels = double(std::max(barHeight - 1, 1));
+  std::vector<LegendTick> out = {{0.0, label(tf.lo)}};
+  std::vector<LegendTick> inside;
+  if (tf.scale == ScalarScale::Log)
+    inside = decades(tf, pixels, double((kGlyphHeight + 2) * scale), double(3 * scale));
+  if (inside.empty()) inside.push_back({0.5, label(tf.valueAt(0.5))});
+  out.insert(out.end(), inside.begin(), inside.end());
+  out.push_back({1.0, label(tf.hi)});
+  return out;
+}
+
 LegendLayout legendLayout(int width, int height, const TransferFunction& tf,
                           const std::string& title) {
   LegendLayout l;
   l.scale = height >= 900 ? 3 : height >= 360 ? 2 : 1;
   const int s = l.scale, margin = 8 * s, gap = 3 * s;
-  int labelWidth = 0;
-  for (const std::string& t : labels(tf)) labelWidth = std::max(labelWidth, textWidth(t, s));
   l.barWidth = 8 * s;
   l.barHeight = std::max(2, height / 2);
+  int labelWidth = 0;
+  for (const std::string& t : labelTexts(tf, l.barHeight, s))
+    labelWidth = std::max(labelWidth, textWidth(t, s));
   // The frame is one dot wide around the bar; ticks reach `gap` to the right of it.
   l.barX = width - margin - labelWidth - 2 * gap - l.barWidth - s;
   l.barY = (height - l.barHeight) / 2 + (kGlyphHeight + 2) * s / 2;
@@ -80,14 +120,14 @@ void drawLegend(Image& img, const TransferFunction& tf, const std::string& title
           x >= l.barX && x < l.barX + l.barWidth && y >= l.barY && y < l.barY + l.barHeight;
       if (!inside) set(x, y, ink);
     }
-  const auto text = labels(tf);
   const int right = l.barX + l.barWidth + s;
-  for (int k = 0; k < 3; ++k) {
-    const int ty = l.barY + (l.barHeight - 1) * k / 2;  // hi, middle, lo
+  for (const LegendTick& t : legendTicks(tf, l.barHeight, s)) {
+    const int ty = l.barY + int(std::lround((1.0 - t.at) * double(l.barHeight - 1)));
     for (int x = right; x < right + gap; ++x)
       for (int d = 0; d < s; ++d) set(x, ty + d - s / 2, ink);
-    drawText(text[size_t(k)], right + 2 * gap, ty - kGlyphHeight * s / 2, s,
-             [&](int x, int y) { set(x, y, ink); });
+    if (!t.text.empty())
+      drawText(t.text, right + 2 * gap, ty - kGlyphHeight * s / 2, s,
+               [&](int x, int y) { set(x, y, ink); });
   }
   const std::string shown = shownTitle(tf, title);
   drawText(shown, std::min(l.barX - s, l.right - textWidth(shown, s)),

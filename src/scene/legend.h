@@ -1,11 +1,12 @@
 // The colour legend (scalar bar) of `render --legend`, as ParaView and VisIt draw one beside a
 // volume: the colour map as a vertical bar at the right of the image, the field's name above it
-// and the range's ends and middle beside it, in the 5x7 bitmap font. Drawn opaque into the
+// and marks beside it (legendTicks), in the 5x7 bitmap font. Drawn opaque into the
 // composited image, so it reads the same over any background; text is white over a dark
 // background and black over a light one.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -19,6 +20,20 @@ struct LegendLayout {
   int left = 0, top = 0, right = 0, bottom = 0;  // everything drawn: [left, right) x [top, bottom)
   int scale = 1;                                 // pixels per font dot
 };
+
+// A mark beside the bar: where (0: the bottom, lo; 1: the top, hi) and its label ("" for a tick
+// without one).
+struct LegendTick {
+  double at = 0.0;
+  std::string text;
+};
+
+// The marks of `tf`'s legend beside a bar `barHeight` pixels tall, at `scale` pixels per font
+// dot: the range's ends, and between them the middle on a linear scale; on a log scale, each
+// power of ten inside the range, as ParaView marks decades (every n-th labelled so that labels
+// never overlap, the rest ticks alone, and none where decades are too close to tell apart), or
+// the geometric mean when no power of ten falls inside. Bottom to top.
+std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, int scale);
 
 // Where drawLegend draws for a width x height image and these labels (clipped to the image).
 LegendLayout legendLayout(int width, int height, const TransferFunction& tf,

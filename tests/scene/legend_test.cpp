@@ -3,6 +3,7 @@
 // and its labels move the bar to make room for them.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 #include <string>
 #include <utility>
@@ -119,6 +120,99 @@ TEST(Legend, ATinyImageIsClippedNotOverrun) {
   int changed = 0;
   for (const glm::vec4& p : img.pixels) changed += p != kUntouched;
   EXPECT_GT(changed, 0);
+}
+
+TransferFunction logViridis(double lo, double hi) {
+  TransferFunction tf = viridis(lo, hi);
+  tf.scale = ScalarScale::Log;
+  return tf;
+}
+
+std::vector<std::string> texts(const std::vector<LegendTick>& ticks) {
+  std::vector<std::string> out;
+  for (const LegendTick& t : ticks) out.push_back(t.text);
+  return out;
+}
+
+TEST(LegendTicks, ALinearScaleMarksTheEndsAndTheMiddle) {
+  const auto t = legendTicks(viridis(-2.0, 3.0), 240, 1);
+  EXPECT_EQ(texts(t), (std::vector<std::string>{"-2", "0.5", "3"}));
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_EQ(t[0].at, 0.0);
+  EXPECT_EQ(t[1].at, 0.5);
+  EXPECT_EQ(t[2].at, 1.0);
+}
+
+// Where each decade sits is where the colour map puts its value: the bar's coordinate of 10^e.
+TEST(LegendTicks, ALogScaleMarksEachDecadeWhereTheMapPutsIt) {
+  const TransferFunction tf = logViridis(0.5, 2000.0);
+  const auto t = legendTicks(tf, 240, 1);
+  EXPECT_EQ(texts(t), (std::vector<std::string>{"0.5", "1", "10", "100", "1000", "2000"}));
+  for (size_t i = 1; i + 1 < t.size(); ++i)
+    EXPECT_NEAR(t[i].at, tf.coordinate(std::stod(t[i].text)), 1e-12) << t[i].text;
+  // Far from 1, decades read as powers, as the ends do.
+  EXPECT_EQ(texts(legendTicks(logViridis(3e-7, 2e-5), 240, 1)),
+            (std::vector<std::string>{"3e-07", "1e-06", "1e-05", "2e-05"}));
+  // A decade at an end is that end's label, not a second one beside it.
+  EXPECT_EQ(texts(legendTicks(logViridis(1.0, 1000.0), 240, 1)),
+            (std::vector<std::string>{"1", "10", "100", "1000"}));
+}
+
+TEST(LegendTicks, WithoutADecadeInsideALogScaleMarksTheGeometricMean) {
+  const auto t = legendTicks(logViridis(2.0, 8.0), 240, 1);
+  EXPECT_EQ(texts(t), (std::vector<std::string>{"2", "4", "8"}));
+  EXPECT_EQ(t[1].at, 0.5);
+}
+
+// Thirty decades on a short bar: labels every n-th decade, never closer than a line of text (nor
+// to the ends'), and ticks alone dropped where decades crowd closer than the tick's own width.
+TEST(LegendTicks, ManyDecadesLabelEveryNthAndNeverOverlap) {
+  for (int height : {60, 120, 480}) {
+    for (int scale : {1, 2}) {
+      const auto t = legendTicks(logViridis(1e-15, 1e15), height, scale);
+      const double line = double((kGlyphHeight + 2) * scale) / double(height - 1);
+      double last = -1.0;
+      int labelled = 0;
+      for (const LegendTick& k : t) {
+        if (k.text.empty()) continue;
+        ++labelled;
+        if (last >= 0.0) {
+          EXPECT_GE(k.at - last, line - 1e-12) << height << " " << k.text;
+        }
+        last = k.at;
+      }
+      EXPECT_GE(labelled, 2) << height;
+      // Decades are (height - 1) / 30 pixels apart: when labels skip some, those are ticks alone
+      // if that is 3 dots or more, and left out if less.
+      const double apart = double(height - 1) / 30.0;
+      const bool skips = apart < double((kGlyphHeight + 2) * scale);
+      EXPECT_EQ(t.size() > size_t(labelled), skips && apart >= 3.0 * scale)
+          << height << " x" << scale;
+    }
+  }
+  // Decades 119 / 30 pixels apart, labels 9: every third decade is labelled, those multiples of
+  // three that clear the ends' labels; the others are ticks alone.
+  std::vector<std::string> labels;
+  for (const std::string& text : texts(legendTicks(logViridis(1e-15, 1e15), 120, 1)))
+    if (!text.empty()) labels.push_back(text);
+  EXPECT_EQ(labels, (std::vector<std::string>{"1e-15", "1e-12", "1e-09", "1e-06", "0.001", "1",
+                                              "1000", "1e+06", "1e+09", "1e+12", "1e+15"}));
+}
+
+// The drawn legend has a tick at each mark's row.
+TEST(LegendTicks, EachMarkIsDrawnAtItsRow) {
+  const TransferFunction tf = logViridis(0.5, 2000.0);
+  Image img = filled(320, 240);
+  drawLegend(img, tf, "density", glm::vec3(0.0f));
+  const LegendLayout l = legendLayout(img.width, img.height, tf, "density");
+  const int tickX = l.barX + l.barWidth + l.scale + 1;  // inside the tick, right of the frame
+  for (const LegendTick& t : legendTicks(tf, l.barHeight, l.scale)) {
+    const int row = l.barY + int(std::lround((1.0 - t.at) * double(l.barHeight - 1)));
+    EXPECT_EQ(img.at(tickX, row), glm::vec4(1.0f)) << t.text;
+  }
+  // And nothing between marks, where no tick is.
+  const int between = l.barY + int(std::lround(0.45 * double(l.barHeight - 1)));
+  EXPECT_EQ(img.at(tickX, between), kUntouched);
 }
 
 TEST(BitmapFont, TextWidthAndDotsFollowTheGlyphs) {

@@ -127,6 +127,48 @@ TEST(ViewerHeadless, OpacityPointsGoWithTheFirstField) {
   }
 }
 
+// The g key's log scale needs a positive range: on a field whose range is not (linear, 0 .. 1)
+// the viewer says so, once however often the key is pressed, and shows it linear as render
+// would; on one whose range is (shock), it shows the log scale without a word.
+TEST(ViewerHeadless, TheGKeySaysWhenAFieldCannotTakeALogScale) {
+  const std::string dir = outputDir("ViewerHeadless.LogKey");
+  const std::string mesh = generateTestMesh(dir);
+  auto logArg = [](const nlohmann::json& j) {
+    for (const auto& a : j["render_args"])
+      if (a == "--log-scale") return true;
+    return false;
+  };
+  auto viewOf = [&](const std::string& field) {
+    std::string v = headlessView(mesh, "32x24");
+    return v.replace(v.find("--field vortex"), 14, "--field " + field);
+  };
+  auto warnings = [](const std::string& err) {
+    int n = 0;
+    for (size_t at = err.find("needs a positive one"); at != std::string::npos;
+         at = err.find("needs a positive one", at + 1))
+      ++n;
+    return n;
+  };
+  const std::string thrice =
+      writeFile(dir, "g3.txt", "key g\nframe\nkey g\nframe\nkey g\nframe\nquit\n");
+  const std::string shot = dir + "/linear.png";
+  CommandResult r =
+      runCommand(viewOf("linear") + "--script " + quote(thrice) + " --screenshot " + quote(shot),
+                 dir, "linear");
+  expectCleanRun(r);
+  EXPECT_EQ(warnings(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("field 'linear' has the range 0 .. 1"), std::string::npos) << r.err;
+  nlohmann::json j = lastJson(r.out);
+  EXPECT_FALSE(logArg(j)) << j.dump();
+  expectMatchesRender(dir, mesh, j, shot, "linear-render");
+
+  const std::string once = writeFile(dir, "g1.txt", "key g\nframe\nquit\n");
+  r = runCommand(viewOf("shock") + "--script " + quote(once), dir, "shock");
+  expectCleanRun(r);
+  EXPECT_EQ(warnings(r.err), 0) << r.err;
+  EXPECT_TRUE(logArg(lastJson(r.out)));
+}
+
 // A resize makes new lists and images, not new pipelines: the session that resizes twice builds
 // as many as the one that does not, and its last frame is render's at the new size.
 TEST(ViewerHeadless, ResizingBuildsNoPipelines) {

@@ -1,14 +1,13 @@
 #include "app/view/view_scene.h"
 
 #include <algorithm>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <utility>
 
 #include "app/render_setup.h"
 #include "common/error.h"
+#include "common/log.h"
 #include "common/timer.h"
 #include "render/frame_defaults.h"
 
@@ -131,6 +130,16 @@ scene::ScalarScale ViewScene::scaleFor(const ViewState& state, const FieldInfo& 
   return state.logScale && f.range.first > 0 ? scene::ScalarScale::Log : scene::ScalarScale::Linear;
 }
 
+// A log scale asked for (the g key) on a field it cannot show says so, once per field, rather
+// than leave the key looking broken.
+void ViewScene::warnIfLinearInstead(const ViewState& state) {
+  if (!state.logScale || field_.range.first > 0 || coll_.rank() != 0) return;
+  if (!linearWarned_.insert(fieldIndex_).second) return;
+  log::warning("view: field '", field_.name, "' has the range ", field_.range.first, " .. ",
+               field_.range.second,
+               "; a log scale needs a positive one, so it is shown on a linear scale");
+}
+
 // Collective, as every rank selects the same fields in the same order; kept per field, so that
 // coming back to one does not read its steps again.
 FieldInfo ViewScene::describeField(const std::string& name,
@@ -182,6 +191,7 @@ void ViewScene::applyState(ViewState& state) {
   const bool points = !job_.opacityPoints.empty();
   // Opacity points sit at each entry's value, which the scale decides.
   const scene::ScalarScale scale = scaleFor(state, field_);
+  warnIfLinearInstead(state);
   if (state.colormap != colormap_ ||
       (points && (fieldIndex_ != tableField_ || scale != tableScale_))) {
     const double unit = settings_.transferFunction.unitDistance;

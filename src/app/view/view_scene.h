@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,7 @@ class ViewScene {
   void selectField(int index);
   FieldInfo describeField(const std::string& name, std::optional<std::pair<double, double>> range);
   scene::ScalarScale scaleFor(const ViewState& state, const FieldInfo& f) const;
+  void warnIfLinearInstead(const ViewState& state);
   void applyState(ViewState& state);
   void applyStep(ViewState& state);
 
@@ -107,6 +109,7 @@ class ViewScene {
   int fieldIndex_ = -1, step_ = -1, colormap_ = -1;
   int tableField_ = 0;  // the field the transfer function's opacity was made for
   scene::ScalarScale tableScale_ = scene::ScalarScale::Linear;  // and the scale
+  std::set<int> linearWarned_;  // fields told that a log scale needs a positive range
 };
 
 // The time step --time names: one index (the viewer shows one step at a time).
