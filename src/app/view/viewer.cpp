@@ -10,10 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/cli_parsers.h"
 #include "app/render_setup.h"
 #include "app/view/input.h"
 #include "app/view/presenter.h"
+#include "app/view/render_args.h"
+#include "app/view/screen_image.h"
 #include "app/view/script.h"
 #include "app/view/view_scene.h"
 #include "app/view/window.h"
@@ -26,29 +27,6 @@
 
 namespace sm::view {
 namespace {
-
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string vec(const glm::dvec3& v) {
-  return fmt("%.17g", v.x) + "," + fmt("%.17g", v.y) + "," + fmt("%.17g", v.z);
-}
-
-// FILE.png -> FILE_0012.png (frame 12), for the screenshot key.
-std::string numberedPath(const std::string& base, uint32_t frame) {
-  std::string stem = base.empty() ? "shellmarch-view.png" : base, ext = ".png";
-  if (auto dot = stem.rfind('.');
-      dot != std::string::npos && stem.find('/', dot) == std::string::npos) {
-    ext = stem.substr(dot);
-    stem.resize(dot);
-  }
-  char num[16];
-  std::snprintf(num, sizeof num, "_%04u", frame);
-  return stem + num + ext;
-}
 
 class Viewer {
  public:
@@ -249,20 +227,6 @@ void Viewer::applyEvents(std::vector<InputEvent>& events) {
   local_.toggleOverlay = local_.toggleLegend = local_.help = false;
 }
 
-// A reduced frame, enlarged into `out` (whose storage is reused) to the window's size by repeating
-// each pixel.
-void enlarge(const std::vector<glm::vec4>& small, int smallWidth, int smallHeight, int width,
-             int height, std::vector<glm::vec4>& out) {
-  out.resize(size_t(width) * size_t(height));
-  for (int y = 0; y < height; ++y) {
-    const int sy = std::min(smallHeight - 1, int(int64_t(y) * smallHeight / height));
-    for (int x = 0; x < width; ++x) {
-      const int sx = std::min(smallWidth - 1, int(int64_t(x) * smallWidth / width));
-      out[size_t(y) * width + x] = small[size_t(sy) * smallWidth + sx];
-    }
-  }
-}
-
 void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
   uint64_t covered = 0;
   for (const glm::vec4& p : frame.pixels) covered += p.a > 0.0f;
@@ -296,8 +260,8 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
   ++framesShown_;
   window_->setTitle("shellmarch view | " + job_.mesh + " | " + scene_->field().name + " step " +
                     std::to_string(state_.step) + " | " +
-                    fmt("%.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) + " | " +
-                    fmt("%.2f fragments/pixel", fragmentsPerPixel_));
+                    formatNumber("%.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) + " | " +
+                    formatNumber("%.2f fragments/pixel", fragmentsPerPixel_));
   writeScreenshots();
 }
 
@@ -306,21 +270,22 @@ void Viewer::show(render::FrameResult& frame, uint64_t fragments) {
 std::vector<std::string> Viewer::overlayLines() const {
   const FieldInfo& f = scene_->field();
   std::vector<std::string> lines;
-  lines.push_back(fmt("frame %.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) +
-                  fmt(" (render %.1f ms)", renderMs_));
-  lines.push_back(fmt("%.2f fragments/pixel", fragmentsPerPixel_));
+  lines.push_back(formatNumber("frame %.1f ms", frameMs_ > 0 ? frameMs_ : renderMs_) +
+                  formatNumber(" (render %.1f ms)", renderMs_));
+  lines.push_back(formatNumber("%.2f fragments/pixel", fragmentsPerPixel_));
   lines.push_back(f.name + " step " + std::to_string(state_.step) + "/" + std::to_string(f.steps) +
                   (!state_.playing    ? std::string("  ")
-                   : options_.fps > 0 ? fmt(" playing, at most %g/s  ", options_.fps)
+                   : options_.fps > 0 ? formatNumber(" playing, at most %g/s  ", options_.fps)
                                       : std::string(" playing  ")) +
                   scene_->choices().colormaps[size_t(state_.colormap)]);
   lines.push_back(
-      fmt("opacity x%.3g", state_.opacityScale) + fmt("  dt %.3g", state_.dt) +
+      formatNumber("opacity x%.3g", state_.opacityScale) + formatNumber("  dt %.3g", state_.dt) +
       (scene_->settings().transferFunction.scale == scene::ScalarScale::Log ? "  log scale" : ""));
-  if (state_.renderScale > 1) lines.push_back(fmt("moving: 1/%g size", double(state_.renderScale)));
+  if (state_.renderScale > 1)
+    lines.push_back(formatNumber("moving: 1/%g size", double(state_.renderScale)));
   if (state_.cut) {
     const auto short3 = [](const glm::dvec3& v, const char* f) {
-      return fmt(f, v.x) + "," + fmt(f, v.y) + "," + fmt(f, v.z);
+      return formatNumber(f, v.x) + "," + formatNumber(f, v.y) + "," + formatNumber(f, v.z);
     };
     lines.push_back("cut at " + short3(state_.cutPoint, "%.3g") + " keeps " +
                     short3(state_.cutNormal, "%.2f"));
@@ -388,26 +353,11 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["scalar_wait_ms"] = scene_->scalarWaitMs();
   j["scalar_load_ms"] = scene_->scalarLoadMs();
   // What `shellmarch render` needs, besides the data options given to view, for this frame.
-  j["render_args"] = {"--size=" + std::to_string(lastWidth_) + "x" + std::to_string(lastHeight_),
-                      "--eye=" + vec(state_.eye),
-                      "--at=" + vec(state_.at),
-                      "--up=" + vec(state_.up),
-                      "--fovy=" + fmt("%.17g", state_.fovyDeg),
-                      "--field=" + f.name,
-                      "--time=" + std::to_string(state_.step),
-                      "--colormap=" + colormap,
-                      "--range=" + fmt("%.17g", f.range.first) + "," + fmt("%.17g", f.range.second),
-                      "--opacity-scale=" + fmt("%.17g", state_.opacityScale),
-                      "--step=" + fmt("%.17g", state_.dt),
-                      "--unit-distance=" + fmt("%.17g", tf.unitDistance)};
-  if (legend_) j["render_args"].push_back("--legend");
-  if (tf.scale == scene::ScalarScale::Log) j["render_args"].push_back("--log-scale");
-  if (!job_.opacityPoints.empty() && state_.field == 0)
-    j["render_args"].push_back("--opacity=" + app::formatOpacityPoints(job_.opacityPoints));
+  static const std::vector<scene::OpacityPoint> kNone;
+  const std::vector<scene::OpacityPoint>& points = state_.field == 0 ? job_.opacityPoints : kNone;
+  j["render_args"] = renderArgs(state_, lastWidth_, lastHeight_,
+                                {f, colormap, tf, points, scene_->settings().clipPlanes, legend_});
   j["legend"] = legend_;
-  // Every plane the frame was clipped by: the view's --clip planes and the cut.
-  for (const scene::ClipPlane& p : scene_->settings().clipPlanes)
-    j["render_args"].push_back("--clip=" + app::formatClipPlane(p));
   j["cut"] =
       state_.cut
           ? nlohmann::json{{"point", {state_.cutPoint.x, state_.cutPoint.y, state_.cutPoint.z}},
