@@ -51,6 +51,11 @@ FAULT_CASES = [
     ("corrupt_piece", "mpi", "3 ranks; piece 2 of the .pvtu cut to 3/4 of its size (its header, "
      "which every rank reads to share pieces out, intact), so only its reader fails",
      "every rank ends with a message naming cap_2.vtu; no image"),
+    ("same_error", "mpi", "3 ranks; every rank fails the same way: a field no piece has, then "
+     "`--fovy 0` (found before MPI starts)",
+     "one line reports each (rank 0's; the other ranks wait two seconds before reporting, and "
+     "rank 0's abort ends them; the test allows fewer lines than ranks, since a loaded machine "
+     "may be slower to end them); no image"),
     ("png_kill", "gpu", "SIGKILL halfway through writing the PNG "
      "(`at=write,match=.png,action=kill`), over an existing a.png",
      "a.png keeps its old content; the partial bytes are only under a temporary name; a new run "
@@ -173,6 +178,35 @@ def fuzz_section(md):
         "timed", minutes(fuzz_wall)))
     failed = [r[0] for r in rows if r[-1] != "ok"]
     return total, failed
+
+
+# Limits of 32-bit device indices and counters, and the tests that hold each (text, not a run's
+# numbers: every figure in it is a limit or an example computed from one).
+INDEX_LIMITS = (
+    "Shaders index buffers with 32-bit integers, which SPIR-V access chains may read as signed, "
+    "so no index may reach 2^31. Sizes that would are refused with one line before the device is "
+    "asked for anything: per rank, element records and neighbours of each type, 16-byte vertex "
+    "records and the shell's three indices per triangle (`prep::checkShaderIndexRange`, naming "
+    "the file, e.g. about 537 million plain tetrahedra or 716 million shell triangles; test "
+    "`ShaderIndexRange.*`); the fragments of one rank's two-pass lists "
+    "(`PrefixSum::downloadTotal`, summed in 64 bits at the top level, and a block total below it "
+    "that would pass 32 bits saturates instead of wrapping; test "
+    "`PrefixSum.TotalsBeyond32BitsAreRefused`) and the slots of fixed-length lists, naming `--k` "
+    "(`DeepCompositorLimits.*`). A shell with more triangles than the device's acceleration "
+    "structures hold (`maxPrimitiveCount`, at least 2^29 - 1; larger builds are undefined "
+    "behaviour, not an error the device reports) is refused naming the rank's count and the "
+    "limit (`HardCases.ShellBeyondTheDevicesPrimitiveLimitIsRefused`, with the test hook "
+    "`SHELLMARCH_AS_PRIMITIVE_LIMIT`). Passes over more than 65 535 workgroups lay them out in "
+    "rows (docs/COMPOSITOR.md, \"Limits of one frame\"). The frame's sample and element-step "
+    "counters are 64-bit (a carry word): a 4096² demo frame at step 0.015 counts 5 093 897 839 "
+    "samples. A sample step finer than the farthest data corner's distance from the eye over "
+    "2^24 is refused naming `--step` (in situ `render: sampleDistance`): float distances along a "
+    "ray no longer tell such samples apart, and the step index would wrap "
+    "(`HardCases.StepFinerThanFloatResolvesIsRefused`, `app.cli-errors`); the viewer's "
+    "finer-step key stops at a hundredth of the starting step. Inside the tracer, the "
+    "first-sample search stops at index 2^24 too, so an element whose exit distance comes out "
+    "infinite or absurd (a degenerate crossing) ends its sampling there instead of counting "
+    "forever.\n")
 
 
 def regressions_section(md):
@@ -313,11 +347,13 @@ def limits_section(md):
         line = first_line(read(os.path.join(FAULTS, case, "small.log")), "out of device memory")
         md.append("- `%s`: %s" % (case, "`%s`" % line if line else "(not run)"))
     md.append("")
+    md.append("### 32-bit indices on the device\n")
+    md.append(INDEX_LIMITS)
     md.append("### Fragment overflow\n")
     md.append("Fixed-length lists (`--lists drop|merge --k K`) count every fragment they drop or "
               "merge (`RenderStats.overflow`). `--stats` prints it per frame, `--stats-json` has "
               "`fragment_overflow` per frame and in total, and `render` warns on rank 0 whenever "
-              "it is not zero. From the last run:\n")
+              "it is not zero, with or without `--stats`. From the last run:\n")
     log = read(os.path.join(FAULTS, "overflow", "fixed.log"))
     for pat in (r"overflowed", r"overflow [0-9]+;"):
         line = first_line(log, pat)
