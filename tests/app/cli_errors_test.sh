@@ -149,6 +149,13 @@ usage "--json: 'nodir/x.json' is in a folder that does not exist" "$sm" bench pr
 usage "--json: 'sdir.json' is a folder" "$sm" bench render --json sdir.json --no-vtk --work-dir bw
 if [ -e bp ]; then echo "FAIL: bench prep worked before refusing --json"; fails=$((fails + 1)); fi
 usage "--screenshot: 'v.jpg' must end in .png" "$sm" view ok.pvtu --headless --frames 1 --screenshot v.jpg
+# The reliability tests' fault hook refuses what it cannot do, in one line, before any image.
+expect "SHELLMARCH_FAULT: action=stall goes with at=read-ahead" \
+  env SHELLMARCH_FAULT=at=read-ahead,action=kill "$sm" render ok.pvtu --out a.png
+expect "SHELLMARCH_FAULT: action=stall goes with at=read-ahead" \
+  env SHELLMARCH_FAULT=at=frame,frame=0,action=stall "$sm" render ok.pvtu --out a.png
+expect "SHELLMARCH_FAULT: cannot use 'at=bogus'" \
+  env SHELLMARCH_FAULT=at=bogus,action=kill "$sm" render ok.pvtu --out a.png
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi
