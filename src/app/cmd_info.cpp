@@ -79,6 +79,8 @@ nlohmann::json infoJson(const InfoOptions& o, const mesh::UnstructuredMesh& m,
                   {"other", m.skipped.other},
                   {"total", m.skipped.totalSkipped()}};
   j["quadraticReduced"] = m.skipped.quadraticReduced;
+  j["polyhedraSplit"] = {{"polyhedra", m.skipped.polyhedraSplit},
+                         {"tets", m.skipped.polyhedronTets}};
   j["invertedFixed"] = m.invertedFixed;
   j["clusters"] = m.numClusters();
   const std::vector<uint64_t> per = cellsPerCluster(m);
@@ -119,6 +121,8 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
           : concat(s.totalSkipped(), " (2D ", s.surface, ", vertex/line ", s.lineOrVertex,
                    ", polyhedra ", s.polyhedra, ", other ", s.other, ")"));
   row("quadratic cells", concat(s.quadraticReduced, " reduced to their corners"));
+  if (s.polyhedraSplit)
+    row("polyhedra", concat(s.polyhedraSplit, " split into ", s.polyhedronTets, " tetrahedra"));
   row("inverted cells", concat(m.invertedFixed, " fixed"));
   const std::vector<uint64_t> per = cellsPerCluster(m);
   std::string clusters = concat(m.numClusters());

@@ -11,6 +11,7 @@
 #include "io/ghost_cells.h"
 #include "io/legacy_scanner.h"
 #include "io/numeric_array.h"
+#include "io/polyhedra.h"
 #include "io/readers.h"
 #include "io/text_scan.h"
 #include "mesh/mesh_builder.h"
@@ -19,6 +20,7 @@ namespace sm::io {
 namespace {
 
 constexpr int64_t kMaxIds = 32;  // ids handed to the builder per cell
+constexpr int64_t kPolyhedron = 42;
 
 struct Array {
   std::string name;
@@ -231,6 +233,7 @@ class LegacyReader {
   uint64_t numPoints_ = 0, numCells_ = 0;
   GhostCells ghostCells_;
   NumericArray points_, conn_, offsets_, types_, timeValues_;
+  std::vector<int64_t> stream_;  // a polyhedron's face stream (reused)
   std::vector<Array> pointArrays_, cellArrays_;
 };
 
@@ -249,7 +252,13 @@ void LegacyReader::addCellsOld(mesh::MeshBuilder& b, const std::vector<int64_t>&
     const int64_t n = at(pos);
     if (n < 0 || uint64_t(n) > size - pos - 1)
       throw FileError(src_, "CELLS: cell ", c, " claims ", n, " points, past the end of the list");
-    if (!ghostCells_.skip(ghost, c)) {
+    if (ghostCells_.skip(ghost, c)) {
+    } else if (types[c] == kPolyhedron) {
+      // The record after its count is the cell's face stream.
+      stream_.resize(size_t(n));
+      for (int64_t k = 0; k < n; ++k) stream_[size_t(k)] = at(pos + 1 + k);
+      b.addPolyhedron(facesFromStream(stream_, src_, c, numPoints_), c);
+    } else {
       const int64_t m = std::min(n, kMaxIds);
       for (int64_t k = 0; k < m; ++k) ids[k] = at(pos + 1 + k);
       b.addVtkCell(static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20)), {ids, size_t(m)},
@@ -265,15 +274,22 @@ void LegacyReader::addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>&
                                const std::vector<int64_t>& ghost) {
   int64_t ids[kMaxIds];
   for (uint64_t c = 0; c < numCells_; ++c) {
-    const int64_t begin = offsets[c], n = std::min(offsets[c + 1] - begin, kMaxIds);
     if (ghostCells_.skip(ghost, c)) continue;
-    for (int64_t i = 0; i < n; ++i) {
-      T v = loadAs<T, Swap>(conn_.data + (begin + i) * sizeof(T));
+    auto id = [&](int64_t i) {
+      T v = loadAs<T, Swap>(conn_.data + i * sizeof(T));
       if constexpr (std::is_unsigned_v<T>)
-        ids[i] = v > T(INT64_MAX) ? INT64_MAX : static_cast<int64_t>(v);
+        return v > T(INT64_MAX) ? INT64_MAX : static_cast<int64_t>(v);
       else
-        ids[i] = static_cast<int64_t>(v);
+        return static_cast<int64_t>(v);
+    };
+    if (types[c] == kPolyhedron) {  // its connectivity is its face stream
+      stream_.resize(size_t(offsets[c + 1] - offsets[c]));
+      for (size_t i = 0; i < stream_.size(); ++i) stream_[i] = id(offsets[c] + int64_t(i));
+      b.addPolyhedron(facesFromStream(stream_, src_, c, numPoints_), c);
+      continue;
     }
+    const int64_t begin = offsets[c], n = std::min(offsets[c + 1] - begin, kMaxIds);
+    for (int64_t i = 0; i < n; ++i) ids[i] = id(begin + i);
     b.addVtkCell(static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20)), {ids, size_t(n)}, c);
   }
 }

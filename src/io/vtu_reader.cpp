@@ -8,6 +8,7 @@
 #include "common/log.h"
 #include "io/array_plan.h"
 #include "io/ghost_cells.h"
+#include "io/polyhedra.h"
 #include "io/readers.h"
 #include "io/text_scan.h"
 #include "io/vtu_arrays.h"
@@ -21,6 +22,7 @@ using Piece = VtuPiece;
 
 // Ids handed to the builder per cell; volume cells need at most 27 (triquadratic hexahedron).
 constexpr int64_t kMaxIds = 32;
+constexpr int kPolyhedron = 42;
 
 std::string quoted(std::string_view what, std::string_view name) {
   return concat(what, " '", name, "'");
@@ -104,10 +106,11 @@ class VtuReader {
         ghost = toInt64(doc_.decode(g, p.numCells, "cell array 'vtkGhostType'", 1), src_,
                         "vtkGhostType");
       reserve(types);
+      const VtuPolyhedra polyhedra(doc_, cells, types);
       visitArray(conn, [&](auto tag, auto swap) {
         using T = typename decltype(tag)::type;
         if constexpr (std::is_integral_v<T>)
-          addCells<T, decltype(swap)::value>(p, conn.data, offsets, types, ghost);
+          addCells<T, decltype(swap)::value>(p, conn.data, offsets, types, ghost, polyhedra);
       });
     }
     ghostCells_.warn(src_);
@@ -123,7 +126,8 @@ class VtuReader {
 
   template <class T, bool Swap>
   void addCells(const Piece& p, const uint8_t* conn, const std::vector<int64_t>& offsets,
-                const std::vector<int64_t>& types, const std::vector<int64_t>& ghost) {
+                const std::vector<int64_t>& types, const std::vector<int64_t>& ghost,
+                const VtuPolyhedra& polyhedra) {
     int64_t ids[kMaxIds];
     int64_t begin = 0;
     const int32_t cluster = pieceCluster_.value_or(0);
@@ -147,7 +151,11 @@ class VtuReader {
         ids[i] = static_cast<int64_t>(v) + static_cast<int64_t>(p.firstPoint);
       }
       const int vtkType = static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20));
-      builder_.addVtkCell(vtkType, {ids, static_cast<size_t>(n)}, fileCell, cluster);
+      if (vtkType == kPolyhedron && polyhedra.hasFaces())
+        builder_.addPolyhedron(polyhedra.faces(c, fileCell, p.numPoints, p.firstPoint), fileCell,
+                               cluster);
+      else
+        builder_.addVtkCell(vtkType, {ids, static_cast<size_t>(n)}, fileCell, cluster);
       begin = end;
     }
   }

@@ -195,6 +195,40 @@ void MeshBuilder::addCell(CellType type, std::span<const int64_t> ids, uint64_t 
   fileCellOf_[typeIndex(type)].push_back(fileCell);
 }
 
+void MeshBuilder::addPolyhedron(const PolyhedronFaces& faces, uint64_t fileCell, int32_t cluster) {
+  for (size_t f = 0; f < faces.numFaces(); ++f) {
+    std::span<const uint32_t> c = faces.face(f);
+    if (c.size() < 3)
+      throw FileError(source_, "cell ", fileCell, " (polyhedron): face ", f, " has ", c.size(),
+                      " points");
+    for (size_t i = 0; i < c.size(); ++i) {
+      if (c[i] >= mesh_.points.size())
+        throw FileError(source_, "cell ", fileCell, " (polyhedron) refers to point ", c[i],
+                        " but the file has ", mesh_.points.size(), " points");
+      // (Quadratic: a longer face is refused as too large below, unchecked.)
+      if (c.size() <= kMaxFacePoints &&
+          std::find(c.begin() + std::ptrdiff_t(i) + 1, c.end(), c[i]) != c.end())
+        throw FileError(source_, "cell ", fileCell, " (polyhedron): face ", f, " uses point ", c[i],
+                        " twice");
+    }
+  }
+  polyTets_.clear();
+  const PolyhedronSplit split = tetrahedralize(faces, mesh_.points, polyTets_);
+  if (split != PolyhedronSplit::Ok) {
+    if (mesh_.skipped.polyhedra++ == 0) {
+      firstUnsplitPolyhedron_ = fileCell;
+      firstUnsplitReason_ = split;
+    }
+    return;
+  }
+  ++mesh_.skipped.polyhedraSplit;
+  mesh_.skipped.polyhedronTets += polyTets_.size();
+  for (const auto& t : polyTets_) {
+    const int64_t ids[4] = {t[0], t[1], t[2], t[3]};
+    addCell(CellType::Tet, ids, fileCell, cluster);
+  }
+}
+
 void MeshBuilder::addFieldStep(const std::string& name, uint64_t step, std::vector<float> values) {
   if (values.size() != mesh_.points.size())
     throw FileError(source_, "point field '", name, "' has ", values.size(), " values for ",
@@ -312,8 +346,16 @@ UnstructuredMesh MeshBuilder::finish() {
   if (s.surface)
     log::warning(source_, ": skipped ", s.surface, " 2D cells (triangles, quads, polygons)");
   if (s.lineOrVertex) log::warning(source_, ": skipped ", s.lineOrVertex, " vertex and line cells");
-  if (s.polyhedra)
-    log::warning(source_, ": skipped ", s.polyhedra, " polyhedron cells (not supported)");
+  if (s.polyhedraSplit)
+    log::info(source_, ": split ", s.polyhedraSplit, " polyhedron cells into ", s.polyhedronTets,
+              " tetrahedra");
+  if (s.polyhedra && firstUnsplitReason_ != PolyhedronSplit::Ok)
+    log::warning(source_, ": skipped ", s.polyhedra,
+                 " polyhedron cells that cannot be split into tetrahedra on their own vertices "
+                 "(first: cell ",
+                 firstUnsplitPolyhedron_, ": ", describe(firstUnsplitReason_), ")");
+  else if (s.polyhedra)
+    log::warning(source_, ": skipped ", s.polyhedra, " polyhedron cells (the file gives no faces)");
   if (s.other) log::warning(source_, ": skipped ", s.other, " cells of unsupported types");
   if (s.quadraticReduced)
     log::warning(source_, ": reduced ", s.quadraticReduced,

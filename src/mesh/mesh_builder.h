@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/polyhedron.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::mesh {
@@ -27,6 +28,10 @@ class MeshBuilder {
   // skipped. Throws sm::FileError for ids out of range and repeated vertices.
   void addVtkCell(int vtkType, std::span<const int64_t> ids, uint64_t fileCell,
                   int32_t cluster = 0);
+  // A polyhedron (VTK type 42) given by its faces, split into tetrahedra (mesh/polyhedron.h); one
+  // that cannot be split is counted and skipped. Throws sm::FileError for ids out of range, faces
+  // of fewer than 3 points and a point twice in one face.
+  void addPolyhedron(const PolyhedronFaces& faces, uint64_t fileCell, int32_t cluster = 0);
   // A linear cell in VTK vertex order (used by formats that are not VTK's, after their conversion).
   void addCell(CellType type, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
 
@@ -63,6 +68,9 @@ class MeshBuilder {
   std::optional<uint64_t> fileCells_;  // set: keep the cells' origins
   uint64_t firstInvertedCell_ = 0;
   uint64_t degenerate_ = 0;
+  uint64_t firstUnsplitPolyhedron_ = 0;
+  PolyhedronSplit firstUnsplitReason_ = PolyhedronSplit::Ok;
+  std::vector<std::array<uint32_t, 4>> polyTets_;  // reused
   uint64_t firstDegenerateCell_ = 0;
 };
 

@@ -56,6 +56,8 @@ void SkippedCells::add(const SkippedCells& s) {
   polyhedra += s.polyhedra;
   other += s.other;
   quadraticReduced += s.quadraticReduced;
+  polyhedraSplit += s.polyhedraSplit;
+  polyhedronTets += s.polyhedronTets;
 }
 
 uint64_t UnstructuredMesh::numCells() const {

@@ -48,11 +48,13 @@ struct Bounds {
 
 // Cells a reader met but does not render; they are counted and reported, never silently dropped.
 struct SkippedCells {
-  uint64_t surface = 0;           // triangles, quads, polygons (2D cells)
-  uint64_t lineOrVertex = 0;      // 0D and 1D cells
-  uint64_t polyhedra = 0;         // VTK_POLYHEDRON and other general polyhedra
-  uint64_t other = 0;             // anything else (unknown or unsupported volume types)
+  uint64_t surface = 0;       // triangles, quads, polygons (2D cells)
+  uint64_t lineOrVertex = 0;  // 0D and 1D cells
+  uint64_t polyhedra = 0;     // VTK_POLYHEDRON cells that could not be split (mesh/polyhedron.h)
+  uint64_t other = 0;         // anything else (unknown or unsupported volume types)
   uint64_t quadraticReduced = 0;  // kept, reduced to their corner vertices
+  uint64_t polyhedraSplit = 0;    // kept, split into tetrahedra
+  uint64_t polyhedronTets = 0;    // the tetrahedra they became
   uint64_t totalSkipped() const { return surface + lineOrVertex + polyhedra + other; }
   void add(const SkippedCells& s);
 };

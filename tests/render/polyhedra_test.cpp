@@ -1,0 +1,132 @@
+// Polyhedron cells rendered: a block of cubes written as VTK polyhedra (points numbered at random,
+// so that no two neighbours list a shared face alike) and the same block written as hexahedra.
+// For a linear field both interpolations are exact, so the images agree with each other and with
+// the CPU reference; and the split conforms, so every ray through the block is one segment (a
+// face cut differently by its two cells would be a shell inside the block and end a segment).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <numeric>
+#include <random>
+
+#include "io/mesh_io.h"
+#include "render/frame_defaults.h"
+#include "render_harness.h"
+#include "scene/camera.h"
+#include "support/test_support.h"
+
+namespace sm::render {
+namespace {
+
+// An n^3 block of unit cubes as an ascii .vtu: hexahedra, or polyhedra with their six faces.
+std::string cubeBlock(int n, bool polyhedra) {
+  const int m = n + 1;
+  std::vector<int> id(size_t(m * m * m));
+  std::iota(id.begin(), id.end(), 0);
+  std::shuffle(id.begin(), id.end(), std::mt19937(11));
+  std::vector<double> xyz(id.size() * 3);
+  auto at = [&](int i, int j, int k) { return id[size_t((k * m + j) * m + i)]; };
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const size_t p = size_t(at(i, j, k)) * 3;
+        xyz[p] = i, xyz[p + 1] = j, xyz[p + 2] = k;
+      }
+  const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                           {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  std::string conn, offsets, types, stream, faceEnds;
+  int cells = 0;
+  size_t streamLength = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int c[8] = {
+            at(i, j, k),     at(i + 1, j, k),     at(i + 1, j + 1, k),     at(i, j + 1, k),
+            at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
+        for (int v : c) conn += std::to_string(v) + " ";
+        offsets += std::to_string(8 * ++cells) + " ";
+        types += polyhedra ? "42 " : "12 ";
+        stream += "6 ";
+        for (const auto& f : faces) {
+          stream += "4 ";
+          for (int v : f) stream += std::to_string(c[v]) + " ";
+        }
+        streamLength += 1 + 6 * 5;
+        faceEnds += std::to_string(streamLength) + " ";
+      }
+  std::string points, values;
+  for (size_t p = 0; p < id.size(); ++p) {
+    points += std::to_string(xyz[3 * p]) + " " + std::to_string(xyz[3 * p + 1]) + " " +
+              std::to_string(xyz[3 * p + 2]) + " ";
+    values += std::to_string(xyz[3 * p] + 2 * xyz[3 * p + 1] + 3 * xyz[3 * p + 2]) + " ";
+  }
+  auto array = [](const char* type, const char* name, const std::string& v, int comps = 1) {
+    return std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
+           "\" NumberOfComponents=\"" + std::to_string(comps) + "\" format=\"ascii\">" + v +
+           "</DataArray>";
+  };
+  return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
+         "NumberOfPoints=\"" +
+         std::to_string(id.size()) + "\" NumberOfCells=\"" + std::to_string(cells) +
+         "\"><PointData>" + array("Float64", "f", values) + "</PointData><Points>" +
+         array("Float64", "Points", points, 3) + "</Points><Cells>" +
+         array("Int64", "connectivity", conn) + array("Int64", "offsets", offsets) +
+         array("UInt8", "types", types) +
+         (polyhedra ? array("Int64", "faces", stream) + array("Int64", "faceoffsets", faceEnds)
+                    : std::string()) +
+         "</Cells></Piece></UnstructuredGrid></VTKFile>";
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+TEST(Polyhedra, BlockOfPolyhedraRendersAsItsHexahedra) {
+  const std::string dir = test::outputDir("Polyhedra.Render");
+  const int n = 4;
+  std::vector<mesh::UnstructuredMesh> meshes;
+  for (bool poly : {true, false}) {
+    const std::string path = dir + (poly ? "/poly.vtu" : "/hex.vtu");
+    writeText(path, cubeBlock(n, poly));
+    meshes.push_back(io::readMesh(path));
+  }
+  ASSERT_EQ(meshes[0].numCells(mesh::CellType::Tet), uint64_t(6 * n * n * n));
+  ASSERT_EQ(meshes[0].skipped.polyhedraSplit, uint64_t(n * n * n));
+  ASSERT_EQ(meshes[1].numCells(mesh::CellType::Hex), uint64_t(n * n * n));
+
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  s.camera =
+      scene::frameBounds(meshes[0].bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = 0;
+  s.transferFunction.hi = 6.0 * n;
+  s.transferFunction.unitDistance = meshes[0].bounds().diagonal() / 4;
+  s.dt = 0.05;
+  s.earlyTermination = 2.0;
+  s.keepSegments = true;
+  std::vector<scene::Image> images;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    const mesh::UnstructuredMesh& m = meshes[k];
+    auto gpu = test::renderOnGpu(m, "f", s);
+    EXPECT_EQ(gpu.validationErrors, 0u);
+    EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
+    size_t most = 0, hit = 0;
+    for (const auto& px : gpu.segments) {
+      most = std::max(most, px.size());
+      hit += px.empty() ? 0 : 1;
+    }
+    EXPECT_GT(hit, size_t(s.width * s.height / 4));
+    EXPECT_EQ(most, 1u) << (k == 0 ? "polyhedra" : "hexahedra")
+                        << ": a ray met a shell inside the block";
+    test::expectImagesClose(k == 0 ? "polyhedra_block" : "polyhedra_block_hex",
+                            test::renderReference(m, m.fields[0].steps[0], s), gpu.image);
+    images.push_back(gpu.image);
+  }
+  test::expectImagesClose("polyhedra_vs_hexahedra", images[1], images[0]);
+}
+
+}  // namespace
+}  // namespace sm::render
