@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -126,6 +127,111 @@ TEST(Polyhedra, BlockOfPolyhedraRendersAsItsHexahedra) {
     images.push_back(gpu.image);
   }
   test::expectImagesClose("polyhedra_vs_hexahedra", images[1], images[0]);
+}
+
+// Polyhedra given as face lists, in an ascii .vtu with the linear field f = x + 2y + 3z.
+std::string polyhedraVtu(const std::vector<glm::dvec3>& points,
+                         const std::vector<std::vector<std::vector<int>>>& cells) {
+  std::string xyz, f, conn, offsets, types, stream, ends;
+  for (const auto& p : points) {
+    xyz += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + " ";
+    f += std::to_string(p.x + 2 * p.y + 3 * p.z) + " ";
+  }
+  size_t nconn = 0, nstream = 0;
+  for (const auto& cell : cells) {
+    std::vector<int> used;
+    stream += std::to_string(cell.size()) + " ";
+    ++nstream;
+    for (const auto& face : cell) {
+      stream += std::to_string(face.size()) + " ";
+      nstream += 1 + face.size();
+      for (int v : face) {
+        stream += std::to_string(v) + " ";
+        if (std::find(used.begin(), used.end(), v) == used.end()) used.push_back(v);
+      }
+    }
+    for (int v : used) conn += std::to_string(v) + " ";
+    nconn += used.size();
+    offsets += std::to_string(nconn) + " ";
+    types += "42 ";
+    ends += std::to_string(nstream) + " ";
+  }
+  auto array = [](const char* type, const char* name, const std::string& v, int comps = 1) {
+    return std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
+           "\" NumberOfComponents=\"" + std::to_string(comps) + "\" format=\"ascii\">" + v +
+           "</DataArray>";
+  };
+  return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
+         "NumberOfPoints=\"" +
+         std::to_string(points.size()) + "\" NumberOfCells=\"" + std::to_string(cells.size()) +
+         "\"><PointData>" + array("Float64", "f", f) + "</PointData><Points>" +
+         array("Float64", "Points", xyz, 3) + "</Points><Cells>" +
+         array("Int64", "connectivity", conn) + array("Int64", "offsets", offsets) +
+         array("UInt8", "types", types) + array("Int64", "faces", stream) +
+         array("Int64", "faceoffsets", ends) + "</Cells></Piece></UnstructuredGrid></VTKFile>";
+}
+
+// Where a refined region meets a coarse cell, as snappyHexMesh leaves it: the coarse cube
+// [0,2]^3 has its x = 2 side as the four faces of the four unit cubes beyond it, and the points
+// on that side's edges in the faces around it (pentagons). Every cell a polyhedron. The split
+// still conforms (one segment per ray) and the image is the CPU reference's.
+TEST(Polyhedra, RefinementInterfaceWithPointsOnEdges) {
+  std::vector<glm::dvec3> points;
+  std::map<std::array<int, 3>, int> index;
+  auto pt = [&](int x, int y, int z) {  // on a grid of unit spacing
+    auto [it, added] = index.try_emplace({x, y, z}, int(points.size()));
+    if (added) points.push_back(glm::dvec3(x, y, z));
+    return it->second;
+  };
+  // A unit cube at (x, y, z) with outward faces.
+  auto cube = [&](int x, int y, int z) {
+    const int c[8] = {
+        pt(x, y, z),     pt(x + 1, y, z),     pt(x + 1, y + 1, z),     pt(x, y + 1, z),
+        pt(x, y, z + 1), pt(x + 1, y, z + 1), pt(x + 1, y + 1, z + 1), pt(x, y + 1, z + 1)};
+    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                             {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    std::vector<std::vector<int>> out;
+    for (const auto& f : faces) out.push_back({c[f[0]], c[f[1]], c[f[2]], c[f[3]]});
+    return out;
+  };
+  std::vector<std::vector<std::vector<int>>> cells;
+  // The coarse cube: x = 0 side, the x = 2 side as four quads, four pentagons around.
+  cells.push_back({{pt(0, 0, 0), pt(0, 0, 2), pt(0, 2, 2), pt(0, 2, 0)},
+                   {pt(2, 0, 0), pt(2, 1, 0), pt(2, 1, 1), pt(2, 0, 1)},
+                   {pt(2, 1, 0), pt(2, 2, 0), pt(2, 2, 1), pt(2, 1, 1)},
+                   {pt(2, 0, 1), pt(2, 1, 1), pt(2, 1, 2), pt(2, 0, 2)},
+                   {pt(2, 1, 1), pt(2, 2, 1), pt(2, 2, 2), pt(2, 1, 2)},
+                   {pt(0, 0, 0), pt(2, 0, 0), pt(2, 0, 1), pt(2, 0, 2), pt(0, 0, 2)},    // y = 0
+                   {pt(0, 2, 0), pt(0, 2, 2), pt(2, 2, 2), pt(2, 2, 1), pt(2, 2, 0)},    // y = 2
+                   {pt(0, 0, 0), pt(0, 2, 0), pt(2, 2, 0), pt(2, 1, 0), pt(2, 0, 0)},    // z = 0
+                   {pt(0, 0, 2), pt(2, 0, 2), pt(2, 1, 2), pt(2, 2, 2), pt(0, 2, 2)}});  // z = 2
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y) cells.push_back(cube(2, y, z));
+  const std::string path = test::outputDir("Polyhedra.Refinement") + "/refined.vtu";
+  writeText(path, polyhedraVtu(points, cells));
+  const mesh::UnstructuredMesh m = io::readMesh(path);
+  ASSERT_EQ(m.skipped.polyhedraSplit, 5u);
+  ASSERT_EQ(m.skipped.polyhedra, 0u);
+
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = 0;
+  s.transferFunction.hi = 15;
+  s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
+  s.dt = 0.05;
+  s.earlyTermination = 2.0;
+  s.keepSegments = true;
+  auto gpu = test::renderOnGpu(m, "f", s);
+  EXPECT_EQ(gpu.validationErrors, 0u);
+  EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
+  size_t most = 0;
+  for (const auto& px : gpu.segments) most = std::max(most, px.size());
+  EXPECT_EQ(most, 1u) << "a ray met a shell inside the cells";
+  test::expectImagesClose("polyhedra_refinement", test::renderReference(m, m.fields[0].steps[0], s),
+                          gpu.image);
 }
 
 }  // namespace
