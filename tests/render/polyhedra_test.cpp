@@ -234,5 +234,74 @@ TEST(Polyhedra, RefinementInterfaceWithPointsOnEdges) {
                           gpu.image);
 }
 
+// A block of cube polyhedra in two .pvtu pieces, each numbering its points its own (random) way:
+// the pieces are welded on read, and the faces between them, split by each piece on its own, are
+// still cut alike (by position, not id), so no ray meets a shell where the pieces meet.
+TEST(Polyhedra, PiecesOfAPvtuMeetWithoutShells) {
+  const std::string dir = test::outputDir("Polyhedra.Pieces");
+  std::mt19937 rng(5);
+  for (int piece = 0; piece < 2; ++piece) {
+    std::vector<glm::dvec3> points;
+    std::map<std::array<int, 3>, int> index;
+    std::vector<std::array<int, 3>> grid;
+    for (int x = 2 * piece; x <= 2 * piece + 2; ++x)
+      for (int y = 0; y <= 2; ++y)
+        for (int z = 0; z <= 2; ++z) grid.push_back({x, y, z});
+    std::shuffle(grid.begin(), grid.end(), rng);
+    for (const auto& g : grid) {
+      index[g] = int(points.size());
+      points.push_back(glm::dvec3(g[0], g[1], g[2]));
+    }
+    auto pt = [&](int x, int y, int z) { return index.at({x, y, z}); };
+    std::vector<std::vector<std::vector<int>>> cells;
+    for (int x = 2 * piece; x < 2 * piece + 2; ++x)
+      for (int y = 0; y < 2; ++y)
+        for (int z = 0; z < 2; ++z) {
+          const int c[8] = {
+              pt(x, y, z),     pt(x + 1, y, z),     pt(x + 1, y + 1, z),     pt(x, y + 1, z),
+              pt(x, y, z + 1), pt(x + 1, y, z + 1), pt(x + 1, y + 1, z + 1), pt(x, y + 1, z + 1)};
+          const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+          std::vector<std::vector<int>> cell;
+          for (const auto& f : faces) cell.push_back({c[f[0]], c[f[1]], c[f[2]], c[f[3]]});
+          cells.push_back(cell);
+        }
+    writeText(dir + "/piece" + std::to_string(piece) + ".vtu", polyhedraVtu(points, cells));
+  }
+  writeText(dir + "/block.pvtu",
+            "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\"><PUnstructuredGrid "
+            "GhostLevel=\"0\"><PPointData><PDataArray type=\"Float64\" Name=\"f\"/></PPointData>"
+            "<PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/></PPoints>"
+            "<Piece Source=\"piece0.vtu\"/><Piece Source=\"piece1.vtu\"/></PUnstructuredGrid>"
+            "</VTKFile>");
+  const mesh::UnstructuredMesh m = io::readMesh(dir + "/block.pvtu");
+  ASSERT_EQ(m.skipped.polyhedraSplit, 16u);
+  ASSERT_EQ(m.numPoints(), 45u);  // 2 x 27 welded along the 9 points of x = 2
+
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = 0;
+  s.transferFunction.hi = 14;
+  s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
+  s.dt = 0.05;
+  s.earlyTermination = 2.0;
+  s.keepSegments = true;
+  // One cluster (the pieces are clusters 0 and 1 when read; join them so that the walk has to
+  // cross where they meet rather than stop at a cluster's shell).
+  mesh::UnstructuredMesh one = m;
+  for (auto& c : one.clusters) std::fill(c.begin(), c.end(), 0);
+  auto gpu = test::renderOnGpu(one, "f", s);
+  EXPECT_EQ(gpu.validationErrors, 0u);
+  EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
+  size_t most = 0;
+  for (const auto& px : gpu.segments) most = std::max(most, px.size());
+  EXPECT_EQ(most, 1u) << "a ray met a shell where the pieces meet";
+  test::expectImagesClose("polyhedra_pieces", test::renderReference(one, one.fields[0].steps[0], s),
+                          gpu.image);
+}
+
 }  // namespace
 }  // namespace sm::render
