@@ -380,7 +380,12 @@ def faults_section(md, rel, rel_path):
               "ahead (`at=read-ahead,action=stall`) until the reader stops it: the viewer test "
               "`ViewerHeadless.ClosingOrJumpingStopsTheStepReadAhead` closes the viewer, and "
               "jumps to another step, while such a read runs, and must end at once with both "
-              "reads stopped (`io::ReadOptions::stopRequested`) instead of waiting for them.\n")
+              "reads stopped (`io::ReadOptions::stopRequested`) instead of waiting for them. A "
+              "fourth makes the viewer's window ask to close as a new field's colour range pass "
+              "starts (`at=range-pass,action=close`): "
+              "`ViewerHeadless.ClosingDuringANewFieldsRangePassStopsIt` must end before the pass "
+              "reads a step, on one rank and on two (rank 1 learns of it through the pass's "
+              "collective).\n")
     md.append("Every output (PNG, cache, .vtu/.pvtu, statistics JSON) goes through "
               "`sm::writeFileAtomically`: written under `NAME.tmp.PID.N` and renamed when "
               "complete, so a name never holds a partial file. A process killed mid-write leaves"

@@ -25,6 +25,8 @@ class StepSource {
 
   // Steps of `field` on this rank (0 when its clusters lack the field).
   uint64_t numSteps(const std::string& field) const;
+  // Whether this rank has points (its share's, counted before preparation took them out).
+  bool hasPoints() const { return numPoints_ > 0; }
   // True when range() and scalars() are collective (a streamed cell field): every rank calls them
   // for the same steps in the same order, on the thread that makes MPI calls. The file reads can
   // run ahead on another thread: scalarsFromCells(rank, readCells(field, step)) is scalars().

@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "common/error.h"
 
@@ -33,9 +34,11 @@ std::optional<Spec> parse(const char* text) {
     const size_t eq = item.find('=');
     const std::string key = item.substr(0, eq), value = eq == item.npos ? "" : item.substr(eq + 1);
     uint64_t n = 0;
-    if (key == "at" && (value == "frame" || value == "write" || value == "read-ahead"))
+    if (key == "at" &&
+        (value == "frame" || value == "write" || value == "read-ahead" || value == "range-pass"))
       s.at = value;
-    else if (key == "action" && (value == "kill" || value == "throw" || value == "stall"))
+    else if (key == "action" &&
+             (value == "kill" || value == "throw" || value == "stall" || value == "close"))
       s.action = value;
     else if (key == "match")
       s.match = value;
@@ -45,12 +48,14 @@ std::optional<Spec> parse(const char* text) {
       s.frame = n;
     else
       throw Error("SHELLMARCH_FAULT: cannot use '", item,
-                  "' (at=frame|write|read-ahead, action=kill|throw|stall, rank=R, frame=N, "
-                  "match=TEXT)");
+                  "' (at=frame|write|read-ahead|range-pass, action=kill|throw|stall|close, rank=R, "
+                  "frame=N, match=TEXT)");
   }
   if (s.at.empty() || s.action.empty()) throw Error("SHELLMARCH_FAULT: needs at= and action=");
   if ((s.action == "stall") != (s.at == "read-ahead"))
     throw Error("SHELLMARCH_FAULT: action=stall goes with at=read-ahead, and only it");
+  if ((s.action == "close") != (s.at == "range-pass"))
+    throw Error("SHELLMARCH_FAULT: action=close goes with at=range-pass, and only it");
   return s;
 }
 
@@ -105,6 +110,14 @@ void atReadAhead(const std::function<bool()>& stopped) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (!(stopped && stopped()) && std::chrono::steady_clock::now() < until)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+bool closeAtRangePass() {
+  const auto& s = spec();
+  if (!s || s->at != "range-pass" || (s->rank && *s->rank != processRank())) return false;
+  static bool announced = false;
+  if (!std::exchange(announced, true)) announce(*s, "in a range pass");
+  return true;
 }
 
 }  // namespace sm::fault

@@ -10,11 +10,14 @@
 //       a time step read ahead while a frame renders (the viewer's play, render --time all) does
 //       not start until the reader stops it or a minute passes: a read that is still running
 //       when the viewer closes or jumps to another step, however fast the disk
+//   SHELLMARCH_FAULT=at=range-pass[,rank=R],action=close
+//       the viewer's window asks to close while a new field's range pass reads its steps (as
+//       if its close button were pressed then), before the pass's first step
 //
-// stall applies to at=read-ahead only. kill raises SIGKILL (a crash or the kernel's OOM killer:
-// nothing runs after it); throw raises sm::Error("injected fault ..."), the path of any ordinary
-// error. The rank is the process's MPI rank as the launcher sets it (0 without one); no rank= means
-// every rank.
+// stall applies to at=read-ahead only, close to at=range-pass only. kill raises SIGKILL (a crash or
+// the kernel's OOM killer: nothing runs after it); throw raises sm::Error("injected fault ..."),
+// the path of any ordinary error. The rank is the process's MPI rank as the launcher sets it (0
+// without one); no rank= means every rank.
 #pragma once
 
 #include <cstdint>
@@ -27,5 +30,7 @@ void atFrame(uint64_t frame);
 void atWrite(const std::string& path);
 // On the read-ahead thread, before the read; `stopped` is the read's stop request.
 void atReadAhead(const std::function<bool()>& stopped);
+// Asked by the viewer during a range pass: true when the fault says the window closes now.
+bool closeAtRangePass();
 
 }  // namespace sm::fault

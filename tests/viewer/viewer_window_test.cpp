@@ -246,6 +246,71 @@ TEST(ViewerHeadless, ClosingOrJumpingStopsTheStepReadAhead) {
   EXPECT_LT(seconds, 30.0) << "a held read was waited for";
 }
 
+// Every field steps through its own time steps, not only the one the viewer started with, and its
+// colours span all of them. (Once, after the first field, preparation having taken the points out
+// of the loaded mesh made every rank count the others as one step: stuck at step 0, coloured by
+// its range.)
+TEST(ViewerHeadless, EveryFieldStepsThroughItsTimeSteps) {
+  const std::string dir = outputDir("ViewerHeadless.FieldSteps");
+  const std::string mesh = generateTestMesh(dir);
+  CommandResult info = runCommand(shellmarch() + " info " + quote(mesh) + " --json", dir, "info");
+  ASSERT_EQ(info.status, 0) << info.err;
+  const nlohmann::json fields = nlohmann::json::parse(info.out)["fields"];
+  const std::string script =
+      writeFile(dir, "steps.txt", "key f shift\nframe\nkey right\nframe\nkey right\nframe\nquit\n");
+  CommandResult r =
+      runCommand(headlessView(mesh, "32x24") + "--script " + quote(script), dir, "view");
+  expectCleanRun(r);
+  const nlohmann::json j = lastJson(r.out);
+  ASSERT_NE(j["field"], "vortex");
+  EXPECT_EQ(j["time"], 2);
+  for (const auto& f : fields)
+    if (f["name"] == j["field"]) {
+      EXPECT_EQ(f["steps"], 3);
+      EXPECT_NEAR(j["range"][0].get<double>(), f["range"][0].get<double>(), 1e-5);
+      EXPECT_NEAR(j["range"][1].get<double>(), f["range"][1].get<double>(), 1e-5);
+    }
+}
+
+// A new field's colour range is read over all its steps before its first frame; a close that
+// comes meanwhile (the fault stands for the window's close button, pressed as the pass starts)
+// stops the pass before its next step and ends the viewer, on every rank, instead of letting it
+// read the field to the end first. Without the close the pass reads the field's three steps and
+// the frame shows it.
+TEST(ViewerHeadless, ClosingDuringANewFieldsRangePassStopsIt) {
+  const std::string dir = outputDir("ViewerHeadless.RangePass");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string script = writeFile(dir, "field.txt", "key f\nframe\nframe\nquit\n");
+  const std::string view = headlessView(mesh, "32x24") + "--range 0,1 --script " + quote(script);
+  CommandResult r = runCommand(view, dir, "read");
+  expectCleanRun(r);
+  nlohmann::json j = lastJson(r.out);
+  EXPECT_EQ(j["range_pass_stopped"], false);
+  EXPECT_EQ(j["range_steps_read"], 3);
+  EXPECT_NE(j["field"], "vortex");
+
+  for (const char* launch : {"", "mpi"}) {
+    SCOPED_TRACE(*launch ? "2 ranks" : "1 rank");
+    // The fault on rank 0 only: rank 1 learns of the close through the pass's collective.
+    std::string command = "SHELLMARCH_FAULT=at=range-pass,rank=0,action=close " + view;
+    if (*launch)
+      command =
+          "SHELLMARCH_FAULT=at=range-pass,rank=0,action=close env -u DISPLAY -u "
+          "WAYLAND_DISPLAY " +
+          mpiexec() + " -n 2 --oversubscribe " + shellmarch() + " view " + quote(mesh) +
+          " --field vortex --size 32x24 --headless --print-camera --range 0,1 --script " +
+          quote(script);
+    r = runCommand(command, dir, *launch ? "stopped-mpi" : "stopped");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("validation error"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("close on rank 0 in a range pass"), std::string::npos) << r.err;
+    j = lastJson(r.out);
+    EXPECT_EQ(j["range_pass_stopped"], true);
+    EXPECT_EQ(j["range_steps_read"], 0);
+    EXPECT_EQ(j["field"], "vortex");  // the new field's frame was never made
+  }
+}
+
 // --fps holds each played step on screen for 1/F s at least (the viewer measures how long each
 // was shown, on the clock it paces by); input still acts at every frame, and without --fps play
 // never waits.

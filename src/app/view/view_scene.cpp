@@ -141,14 +141,16 @@ void ViewScene::warnIfLinearInstead(const ViewState& state) {
 }
 
 // Collective, as every rank selects the same fields in the same order; kept per field, so that
-// coming back to one does not read its steps again.
+// coming back to one does not read its steps again. Whether this rank has points comes from the
+// step source: after the first field, preparation has taken them out of the share's mesh (which
+// once made every later field look like one step on every rank).
 FieldInfo ViewScene::describeField(const std::string& name,
                                    std::optional<std::pair<double, double>> range) {
   FieldInfo f;
   f.name = name;
-  f.steps = std::max<uint64_t>(app::agreedStepCount(job_.mesh, name, source_->numSteps(name),
-                                                    share_.mesh.numPoints() > 0, coll_),
-                               1);
+  f.steps = std::max<uint64_t>(
+      app::agreedStepCount(job_.mesh, name, source_->numSteps(name), source_->hasPoints(), coll_),
+      1);
   if (range) {
     f.range = *range;
     return f;
@@ -157,7 +159,11 @@ FieldInfo ViewScene::describeField(const std::string& name,
   // read once, one at a time. A field with no finite value shows as empty, not as an error, so
   // that cycling through fields goes on.
   mesh::Range r;
-  for (uint64_t step = 0; step < f.steps; ++step) r.extend(source_->range(name, step));
+  for (uint64_t step = 0; step < f.steps; ++step) {
+    if (coll_.max(interrupt_ && interrupt_() ? 1.0 : 0.0) > 0.0) throw RangePassStopped();
+    r.extend(source_->range(name, step));
+    ++rangeStepsRead_;
+  }
   const double lo = coll_.min(r.empty ? INFINITY : r.lo),
                hi = coll_.max(r.empty ? -INFINITY : r.hi);
   if (lo <= hi) f.range = {lo, hi};

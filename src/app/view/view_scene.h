@@ -9,6 +9,8 @@
 // steps and range over all ranks) and compositing is collective.
 #pragma once
 
+#include <exception>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -31,6 +33,11 @@ struct FieldInfo {
   std::string name;
   uint64_t steps = 1;                         // most steps on any rank
   std::pair<double, double> range{0.0, 1.0};  // over all its steps, all ranks
+};
+
+// Thrown by ViewScene::render on every rank when its interrupt check stopped a range pass.
+struct RangePassStopped : std::exception {
+  const char* what() const noexcept override { return "a field's range pass was stopped"; }
 };
 
 class ViewScene {
@@ -67,6 +74,11 @@ class ViewScene {
   // Stops a step read ahead (closing); how many reads ahead were stopped before they ended.
   void stopReadAhead() { loads_->discard(); }
   uint64_t stoppedReads() const { return loads_->stoppedReads(); }
+  // Asked before each step a new field's range pass reads (every step of the field, on this
+  // thread): once it says stop on any rank, render() throws RangePassStopped on every rank
+  // (collective). Rank 0 passes the window's close; the others need none.
+  void setInterrupt(std::function<bool()> interrupt) { interrupt_ = std::move(interrupt); }
+  uint64_t rangeStepsRead() const { return rangeStepsRead_; }
   double loadSeconds() const { return loadSeconds_; }
   double prepareSeconds() const { return prepareSeconds_; }
 
@@ -110,6 +122,8 @@ class ViewScene {
   int tableField_ = 0;  // the field the transfer function's opacity was made for
   scene::ScalarScale tableScale_ = scene::ScalarScale::Linear;  // and the scale
   std::set<int> linearWarned_;  // fields told that a log scale needs a positive range
+  std::function<bool()> interrupt_;
+  uint64_t rangeStepsRead_ = 0;
 };
 
 // The time step --time names: one index (the viewer shows one step at a time).

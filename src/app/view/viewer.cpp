@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/render_setup.h"
+#include "app/view/early_input.h"
 #include "app/view/input.h"
 #include "app/view/presenter.h"
 #include "app/view/render_args.h"
@@ -56,20 +57,22 @@ class Viewer {
   const ViewOptions& options_;
   app::Collectives& coll_;
   Script script_;
-  std::unique_ptr<Window> window_;  // rank 0 only, as are presenter_ and input_
+  std::unique_ptr<Window> window_;  // rank 0 only, as are presenter_, input_ and early_
   std::unique_ptr<ViewScene> scene_;
   std::unique_ptr<Presenter> presenter_;
   std::unique_ptr<InputHandler> input_;
+  std::unique_ptr<EarlyInput> early_;
   ViewState state_;
   LocalRequests local_;
   std::vector<glm::vec4> lastPixels_;
   std::vector<glm::vec4> sparePixels_;  // the frame before's, handed to the next render
   int lastWidth_ = 0, lastHeight_ = 0;
   uint32_t framesShown_ = 0;
-  uint32_t reducedFrames_ = 0;  // frames rendered at a reduced size while the camera moved
-  ViewState shownState_;        // the state of the frame shown last
-  uint64_t stoppedReads_ = 0;   // reads ahead stopped unfinished (finish(): summed over ranks)
-  bool quitPending_ = false;    // quit after the full-size frame that replaces a reduced last one
+  uint32_t reducedFrames_ = 0;     // frames rendered at a reduced size while the camera moved
+  ViewState shownState_;           // the state of the frame shown last
+  uint64_t stoppedReads_ = 0;      // reads ahead stopped unfinished (finish(): summed over ranks)
+  bool rangePassStopped_ = false;  // a close or quit came during a new field's range pass
+  bool quitPending_ = false;  // quit after the full-size frame that replaces a reduced last one
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
   bool legend_ = false;  // drawn into the image, so into screenshots too (render --legend's)
@@ -104,6 +107,8 @@ Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Colle
   if (root()) {
     presenter_ = std::make_unique<Presenter>(*window_, scene_->context(), job.background);
     input_ = std::make_unique<InputHandler>(scene_->homeCamera(), scene_->choices());
+    early_ = std::make_unique<EarlyInput>(*window_, script_);
+    scene_->setInterrupt([this] { return early_->quitArrived(); });
   }
   state_ = scene_->initialState(job.width, job.height, options.play);
   log::info("view: loaded in ", scene_->loadSeconds(), " s, prepared in ", scene_->prepareSeconds(),
@@ -121,7 +126,13 @@ void Viewer::run() {
     stateWaits_.ms += wait.ms();
     stateWaits_.cpuMs += threadCpuMs() - cpu;
     if (state_.quit) break;
-    render::FrameResult frame = scene_->render(state_, std::move(sparePixels_));
+    render::FrameResult frame;
+    try {
+      frame = scene_->render(state_, std::move(sparePixels_));
+    } catch (const RangePassStopped&) {  // on every rank
+      rangePassStopped_ = true;
+      break;
+    }
     const uint64_t fragments = coll_.sum(uint64_t(frame.fragments));
     if (root()) {
       renderMs_ = frame.timings.totalMs;
@@ -136,8 +147,7 @@ void Viewer::run() {
 void Viewer::gatherInput() {
   const scene::Camera before = state_.camera();
   std::vector<InputEvent> events;
-  window_->poll(events);
-  const bool scripted = script_.nextFrame(events);
+  const bool scripted = early_->takeFrame(events);
   const int32_t step = state_.step;
   const bool playing = state_.playing;
   applyEvents(events);
@@ -350,6 +360,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["scalar_uploads"] = scene_->gpu().scalarUploads();
   j["prefetched_steps"] = scene_->prefetchedSteps();
   j["stopped_reads"] = stoppedReads_;  // over all ranks
+  j["range_pass_stopped"] = rangePassStopped_;
+  j["range_steps_read"] = scene_->rangeStepsRead();  // rank 0's
   j["scalar_wait_ms"] = scene_->scalarWaitMs();
   j["scalar_load_ms"] = scene_->scalarLoadMs();
   // What `shellmarch render` needs, besides the data options given to view, for this frame.

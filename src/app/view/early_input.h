@@ -1,0 +1,33 @@
+// Input that arrives while a frame is still being made. A new field's range pass reads every step
+// of the field before the frame can render; meanwhile the window's events are taken here, looked
+// at for a close or quit, so that the pass can stop at once, and handed to the next frame in
+// order. A script's input stays with its frames (a script's "frame" renders the input above it
+// whatever follows); SHELLMARCH_FAULT=at=range-pass,action=close stands for a close then.
+#pragma once
+
+#include <vector>
+
+#include "app/view/input.h"
+#include "app/view/script.h"
+#include "app/view/window.h"
+
+namespace sm::view {
+
+class EarlyInput {
+ public:
+  EarlyInput(Window& window, Script& script) : window_(window), script_(script) {}
+
+  // Takes what has arrived; true once a close or quit is among it.
+  bool quitArrived();
+  // The next frame's input: what arrived early, then the window's, then the script's. Returns
+  // Script::nextFrame's answer (false once the script is over).
+  bool takeFrame(std::vector<InputEvent>& events);
+
+ private:
+  Window& window_;
+  Script& script_;
+  std::vector<InputEvent> early_;
+  bool quit_ = false;
+};
+
+}  // namespace sm::view
