@@ -11,6 +11,9 @@ CellAverager::CellAverager(const mesh::UnstructuredMesh& input, std::vector<uint
   mesh_.source = input.source;
   mesh_.points = input.points;
   mesh_.cells = input.cells;
+  // A polyhedron's tetrahedra count once at a point (mesh::cellUsesAtPoints).
+  mesh_.cellOrigin = input.cellOrigin;
+  mesh_.skipped.polyhedraSplit = input.skipped.polyhedraSplit;
 }
 
 void CellAverager::findSharedPoints(RankExchange& ranks) {
@@ -30,14 +33,7 @@ void CellAverager::findSharedPoints(RankExchange& ranks) {
 std::vector<float> CellAverager::toPoints(std::span<const float> values, RankExchange& ranks) {
   SM_CHECK_EQ(values.size(), numCells_);
   if (!found_) findSharedPoints(ranks);
-  std::vector<std::vector<double>> sums(1, std::vector<double>(numPoints_, 0.0));
-  size_t cell = 0;
-  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
-    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
-    const std::vector<uint32_t>& ids = mesh_.cells[t];
-    for (size_t i = 0; i < ids.size(); i += nv, ++cell)
-      for (uint32_t k = 0; k < nv; ++k) sums[0][ids[i + k]] += values[cell];
-  }
+  std::vector<std::vector<double>> sums(1, mesh::cellSumsAtPoints(mesh_, values, numPoints_));
   if (border_) border_->addOtherRanks(sums, ranks);
   return mesh::meansAtPoints(sums[0], uses_);
 }

@@ -51,12 +51,47 @@ void checkIds(const TypedIds& t, uint64_t numPoints) {
   }
 }
 
+// The polyhedra's face streams, one after another, checked with messages that name the array
+// position; returns how many there were.
+uint64_t addPolyhedra(const IndexSpan& s, uint64_t firstElement, mesh::MeshBuilder& builder) {
+  mesh::PolyhedronFaces faces;
+  uint64_t count = 0;
+  for (size_t pos = 0; pos < s.size(); ++count) {
+    const size_t start = pos;
+    auto fail = [&](auto&&... what) {
+      throw Error("setMesh: polyhedron ", count, " (polyhedra[", start, "]) ", what...);
+    };
+    const int64_t numFaces = s[pos++];
+    if (numFaces < 4 || uint64_t(numFaces) > s.size() - pos)
+      fail("claims ", numFaces, " faces (at least 4, each 4 values or more, before the end)");
+    faces.ids.clear();
+    faces.offsets.assign(1, 0);
+    for (int64_t f = 0; f < numFaces; ++f) {
+      if (pos >= s.size()) fail("ends before its face ", f);
+      const int64_t n = s[pos++];
+      if (n < 3 || uint64_t(n) > s.size() - pos)
+        fail("face ", f, " claims ", n, " vertices", n < 3 ? " (at least 3)" : ", past the end");
+      for (int64_t k = 0; k < n; ++k, ++pos) {
+        const int64_t id = s[pos];
+        if (id < 0 || uint64_t(id) >= builder.numPoints())
+          fail("refers to vertex ", id, " (polyhedra[", pos, "]), but points gives ",
+               builder.numPoints(), " vertices (ids are 0-based)");
+        faces.ids.push_back(uint32_t(id));
+      }
+      faces.offsets.push_back(uint32_t(faces.ids.size()));
+    }
+    builder.addPolyhedron(faces, firstElement + count);
+  }
+  return count;
+}
+
 }  // namespace
 
 mesh::UnstructuredMesh meshFromView(const MeshView& view) {
   // The builder's messages start with its source name; here that is the API call.
   mesh::MeshBuilder builder("setMesh");
   builder.setPoints(copyPoints(view.points));
+  uint64_t element = 0;  // the caller's numbering: the four types in order, then the polyhedra
   for (const TypedIds& t : typedIds(view)) {
     checkIds(t, builder.numPoints());
     const uint32_t nv = mesh::numVerts(t.type);
@@ -65,9 +100,12 @@ mesh::UnstructuredMesh meshFromView(const MeshView& view) {
     int64_t ids[8];
     for (uint64_t e = 0; e < count; ++e) {
       for (uint32_t k = 0; k < nv; ++k) ids[k] = t.ids[e * nv + k];
-      builder.addCell(t.type, std::span<const int64_t>(ids, nv), e);
+      builder.addCell(t.type, std::span<const int64_t>(ids, nv), element++);
     }
   }
+  if (view.polyhedra.empty()) return builder.finish();
+  element += addPolyhedra(view.polyhedra, element, builder);
+  builder.keepCellOrigins(element);
   return builder.finish();
 }
 

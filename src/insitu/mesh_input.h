@@ -11,7 +11,9 @@
 
 namespace sm::insitu {
 
-// This rank's mesh as a copy; throws sm::Error on bad input.
+// This rank's mesh as a copy; throws sm::Error on bad input. With polyhedra, the mesh's
+// cellOrigin gives each element's number among the caller's elements (the four types' in order,
+// then the polyhedra), and fileCells their count; without, cellOrigin is empty (the identity).
 mesh::UnstructuredMesh meshFromView(const shellmarch::insitu::MeshView& view);
 // MeshView::globalIds as a copy (empty when not given); throws sm::Error for a wrong count or a
 // negative id.

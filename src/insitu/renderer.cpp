@@ -58,6 +58,10 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   sm::border::CellAverager cellFields;
   MeshFrame frame;
   uint64_t localElements = 0;
+  // The caller's elements (setCellField's values) and, with polyhedra, which of them each of the
+  // mesh's elements came from (a polyhedron's value goes to each of its tetrahedra).
+  uint64_t callerElements = 0;
+  std::vector<uint32_t> elementOrigin;
   uint64_t retiredBuilds = 0, retiredUploads = 0;  // of scenes replaced by a later setMesh
   double prepareSeconds = 0, frameMs = 0;
 };
@@ -72,6 +76,8 @@ void Renderer::Impl::releaseMesh() {
   scene.reset();
   fields = FieldStore();
   cellFields = sm::border::CellAverager();
+  callerElements = 0;
+  elementOrigin.clear();
 }
 
 MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
@@ -91,7 +97,9 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
 
 void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds) {
   const uint64_t inputVertices = m.numPoints();  // preparation takes the points out of m
+  callerElements = m.cellOrigin.empty() ? m.numCells() : m.fileCells;
   cellFields = sm::border::CellAverager(m, std::move(globalIds));
+  elementOrigin = std::move(m.cellOrigin);
   sm::prep::PreparedRank prepared =
       sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
           .rank;
@@ -122,7 +130,7 @@ void Renderer::Impl::setMesh(const MeshView& view) {
         "holds vertices, or on none)");
   frame = agreeOnFrame(m);
   if (frame.elements == 0)
-    throw Error("setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
+    throw Error("setMesh: no tetrahedra, pyramids, wedges, hexahedra or polyhedra on any rank");
   group.agree([&] { upload(m, std::move(globalIds)); });
   prepareSeconds = timer.seconds();
 }
@@ -131,12 +139,18 @@ void Renderer::Impl::setCellField(const std::string& name, std::span<const float
   group.agree([&] {
     if (!scene) throw Error("setCellField: no mesh (call setMesh first)");
     if (name.empty()) throw Error("setCellField: the field needs a name");
-    if (values.size() != cellFields.numCells())
+    if (values.size() != callerElements)
       throw Error(sm::concat("setCellField '", name, "': ", values.size(), " values for ",
-                             cellFields.numCells(),
+                             callerElements,
                              " elements (one per element: the tetrahedra, then the pyramids, "
-                             "wedges and hexahedra given to setMesh)"));
+                             "wedges, hexahedra and polyhedra given to setMesh)"));
   });
+  std::vector<float> expanded;
+  if (!elementOrigin.empty()) {
+    expanded.resize(elementOrigin.size());
+    for (size_t i = 0; i < expanded.size(); ++i) expanded[i] = values[elementOrigin[i]];
+    values = expanded;
+  }
   if (!group.same(sm::hashBytes(name.data(), name.size())))
     throw Error(
         "setCellField: the field name differs between ranks; every rank must set the same cell "

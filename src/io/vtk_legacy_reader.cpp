@@ -340,6 +340,7 @@ mesh::UnstructuredMesh LegacyReader::build() {
     if (types_.numValues() != numCells_)
       throw FileError(src_, "CELL_TYPES lists ", types_.numValues(), " cells, CELLS ", numCells_);
     const std::vector<int64_t> types = toInt64(types_, src_, "cell types");
+    b.setFileCells(numCells_);  // origins are kept for polyhedra (their cell data's means)
     std::vector<int64_t> ghost;
     for (const auto& a : cellArrays_)
       if (a.name == "vtkGhostType" && a.data.data) ghost = toInt64(a.data, src_, "vtkGhostType");

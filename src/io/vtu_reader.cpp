@@ -39,11 +39,12 @@ class VtuReader {
 
   mesh::UnstructuredMesh read() {
     findPieces();
-    if (options_.cellOrigins) {
-      uint64_t fileCells = 0;
-      for (const Piece& p : pieces_) fileCells += p.numCells;
+    uint64_t fileCells = 0;
+    for (const Piece& p : pieces_) fileCells += p.numCells;
+    if (options_.cellOrigins)
       builder_.keepCellOrigins(fileCells);
-    }
+    else
+      builder_.setFileCells(fileCells);  // kept for polyhedra only
     cellArrays_ = dataCellArrays(vtuCellArrayNames(pieces_[0]), options_);
     builder_.setCellArrays(cellArrays_);
     readPoints();

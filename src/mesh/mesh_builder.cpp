@@ -311,10 +311,15 @@ void MeshBuilder::keepCellOrigins(uint64_t fileCells) {
     throw FileError(source_, "has ", fileCells,
                     " cells: more than 2^32 - 1, the most whose origins can be kept");
   fileCells_ = fileCells;
+  keepOrigins_ = true;
+}
+
+void MeshBuilder::setFileCells(uint64_t fileCells) {
+  if (fileCells <= 0xFFFFFFFFull && !fileCells_) fileCells_ = fileCells;
 }
 
 UnstructuredMesh MeshBuilder::finish() {
-  if (fileCells_) {
+  if (fileCells_ && (keepOrigins_ || mesh_.skipped.polyhedraSplit > 0)) {
     mesh_.fileCells = *fileCells_;
     for (const auto& fileCells : fileCellOf_)
       for (uint64_t c : fileCells) mesh_.cellOrigin.push_back(uint32_t(c));

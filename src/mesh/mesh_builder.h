@@ -52,6 +52,9 @@ class MeshBuilder {
   // Makes finish() record each kept cell's file cell number (UnstructuredMesh::cellOrigin), the
   // file having `fileCells` cells in all.
   void keepCellOrigins(uint64_t fileCells);
+  // The file's cell count, for readers not asked to keep origins: finish() then records them only
+  // when a polyhedron was split (cellUsesAtPoints counts its tetrahedra once at a point).
+  void setFileCells(uint64_t fileCells);
 
   // Checks fields for missing steps, prints one warning per kind of fix or skip, returns the mesh.
   UnstructuredMesh finish();
@@ -66,6 +69,7 @@ class MeshBuilder {
   // File cell number of every kept cell, per type, so that cell arrays (clusters) can be applied.
   std::array<std::vector<uint64_t>, kNumCellTypes> fileCellOf_;
   std::optional<uint64_t> fileCells_;  // set: keep the cells' origins
+  bool keepOrigins_ = false;           // asked for, not only counted
   uint64_t firstInvertedCell_ = 0;
   uint64_t degenerate_ = 0;
   uint64_t firstUnsplitPolyhedron_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include <glm/common.hpp>
 
@@ -158,23 +159,57 @@ std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std:
   return concat("; '", base, "' is cell data, read only when --field names it");
 }
 
+namespace {
+
+// Calls use(point, element) for every vertex of every element (elements counted type by type, in
+// the order of `cells`), once per cell of the file at each point: the tetrahedra a polyhedron was
+// split into (consecutive, with one cell origin) count once at a point they share, as the
+// polyhedron does in ParaView's Cell Data to Point Data, not once per tetrahedron.
+template <class Use>
+void forEachCellUse(const UnstructuredMesh& m, uint64_t numPoints, Use&& use) {
+  const bool split = m.skipped.polyhedraSplit > 0 && m.cellOrigin.size() == m.numCells();
+  std::vector<uint32_t> lastOrigin(split ? numPoints : 0, 0xFFFFFFFFu);
+  size_t element = 0;
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    const uint32_t nv = numVerts(kAllCellTypes[t]);
+    const std::vector<uint32_t>& ids = m.cells[t];
+    for (size_t i = 0; i < ids.size(); i += nv, ++element)
+      for (uint32_t k = 0; k < nv; ++k) {
+        const uint32_t v = ids[i + k];
+        if (split) {
+          if (lastOrigin[v] == m.cellOrigin[element]) continue;
+          lastOrigin[v] = m.cellOrigin[element];
+        }
+        use(v, element);
+      }
+  }
+}
+
+}  // namespace
+
 std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m) {
   std::vector<double> uses(m.numPoints(), 0.0);
-  for (int t = 0; t < kNumCellTypes; ++t)
-    for (uint32_t v : m.cells[t]) uses[v] += 1.0;
+  forEachCellUse(m, m.numPoints(), [&](uint32_t v, size_t) { uses[v] += 1.0; });
   return uses;
 }
 
-std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step) {
-  std::vector<double> sum(m.numPoints(), 0.0);
-  const auto& perType = f.steps[step];
-  for (int t = 0; t < kNumCellTypes; ++t) {
-    const uint32_t nv = numVerts(kAllCellTypes[t]);
-    SM_CHECK_EQ(perType[t].size() * nv, m.cells[t].size());
-    for (size_t i = 0; i < perType[t].size(); ++i)
-      for (uint32_t k = 0; k < nv; ++k) sum[m.cells[t][i * nv + k]] += perType[t][i];
-  }
+std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, std::span<const float> perElement,
+                                     uint64_t numPoints) {
+  SM_CHECK_EQ(perElement.size(), m.numCells());
+  std::vector<double> sum(numPoints, 0.0);
+  forEachCellUse(m, numPoints, [&](uint32_t v, size_t e) { sum[v] += perElement[e]; });
   return sum;
+}
+
+std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step) {
+  std::vector<float> flat;
+  flat.reserve(m.numCells());
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    const auto& values = f.steps[step][t];
+    SM_CHECK_EQ(values.size() * numVerts(kAllCellTypes[t]), m.cells[t].size());
+    flat.insert(flat.end(), values.begin(), values.end());
+  }
+  return cellSumsAtPoints(m, flat, m.numPoints());
 }
 
 std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses) {

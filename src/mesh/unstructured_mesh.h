@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -76,7 +77,8 @@ struct UnstructuredMesh {
   // their points numbered one after another, so that a later time step can be read without the
   // points (io::readFieldStep). Empty where the points are the file's own, in its order.
   std::vector<uint32_t> pointOrigin;
-  // Kept only when a reader is asked (io::ReadOptions::cellOrigins): element i, counted type by
+  // Kept when a reader is asked (io::ReadOptions::cellOrigins), and for files with polyhedra (the
+  // tetrahedra of one then count once at a point: cellUsesAtPoints): element i, counted type by
   // type in the order of `cells`, is cell cellOrigin[i] of the files read, their cells (skipped
   // ones included) numbered one after another; fileCells is how many there are. A later step of
   // cell data is then read without the cells (io::readCellFieldStep).
@@ -109,8 +111,14 @@ std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std:
 void cellFieldsToPoints(UnstructuredMesh& m);
 // The pieces of cellFieldsToPoints. Per point: the number of elements that use it, and the sum of
 // their values in step `step` of `f`; the mean is sums / uses (NaN where uses is 0).
+// A polyhedron split into tetrahedra counts once at each of its points, like any other cell, when
+// the mesh has its cell origins (readers keep them for files with polyhedra).
 std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m);
 std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step);
+// The same with one value per element, in the order of `cells` (type by type), over `numPoints`
+// points (a caller may have freed m's points: the cells suffice).
+std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, std::span<const float> perElement,
+                                     uint64_t numPoints);
 std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses);
 
 // The other way (VTK's Point Data to Cell Data): every point field becomes a cell field of the same

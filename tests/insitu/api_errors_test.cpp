@@ -68,6 +68,35 @@ TEST_F(InsituErrors, MeshArrays) {
   t = kTets;
   t[5] = 1;
   expectError([&] { r.setMesh(twoTets(kPoints, t)); }, "uses the same point twice");
+  // Polyhedra's face streams, named by polyhedron and array position.
+  auto withPolyhedra = [&](std::vector<int64_t> stream) {
+    api::MeshView v = twoTets(kPoints, kTets);
+    v.polyhedra = stream;
+    r.setMesh(v);
+  };
+  const std::vector<int64_t> tet = {4, 3, 0, 2, 1, 3, 0, 1, 3, 3, 1, 2, 3, 3, 2, 0, 3};
+  expectError(
+      [&] {
+        withPolyhedra({3, 3, 0, 1, 2});
+      },
+      "setMesh: polyhedron 0 (polyhedra[0]) claims 3 faces");
+  std::vector<int64_t> bad = tet;
+  bad[4] = 9;
+  expectError([&] { withPolyhedra(bad); },
+              "setMesh: polyhedron 0 (polyhedra[0]) refers to vertex 9 (polyhedra[4]), but points "
+              "gives 5 vertices");
+  bad = tet;
+  bad[1] = 2;
+  expectError([&] { withPolyhedra(bad); }, "face 0 claims 2 vertices (at least 3)");
+  bad = tet;
+  bad.pop_back();
+  expectError([&] { withPolyhedra(bad); }, "face 3 claims 3 vertices, past the end");
+  bad = tet;
+  bad.insert(bad.end(), {4, 3, 0});
+  expectError([&] { withPolyhedra(bad); }, "setMesh: polyhedron 1 (polyhedra[17]) claims 4 faces");
+  bad = tet;
+  bad[3] = 0;
+  expectError([&] { withPolyhedra(bad); }, "(polyhedron): face 0 uses point 0 twice");
   const std::vector<uint64_t> huge = {0, 1, 2, std::numeric_limits<uint64_t>::max()};
   api::MeshView v = twoTets(kPoints, {});
   v.tetrahedra = huge;
@@ -88,7 +117,7 @@ TEST_F(InsituErrors, NonFinitePositions) {
 
 TEST_F(InsituErrors, NoElements) {
   expectError([&] { vis_->setMesh(twoTets(kPoints, {})); },
-              "setMesh: no tetrahedra, pyramids, wedges or hexahedra on any rank");
+              "setMesh: no tetrahedra, pyramids, wedges, hexahedra or polyhedra on any rank");
 }
 
 // A failed setMesh leaves the renderer without a mesh (whatever an earlier test left).
@@ -118,7 +147,7 @@ TEST_F(InsituErrors, CellFields) {
   vis_->setMesh(twoTets(kPoints, kTets));
   expectError([&] { vis_->setCellField("p", std::vector<float>(5)); },
               "setCellField 'p': 5 values for 2 elements (one per element: the tetrahedra, then "
-              "the pyramids, wedges and hexahedra given to setMesh)");
+              "the pyramids, wedges, hexahedra and polyhedra given to setMesh)");
   expectError([&] { vis_->setCellField("", std::vector<float>(2)); },
               "setCellField: the field needs a name");
   const std::vector<int64_t> fourIds = {0, 1, 2, 3}, negative = {0, 1, -2, 3, 4};

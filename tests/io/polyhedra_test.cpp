@@ -132,6 +132,16 @@ TEST(Polyhedra, FilesVtkWrote) {
     EXPECT_NEAR(totalVolume(m), 2.0 + 3.0 * std::sqrt(3.0) / 2.0, 1e-5);
     if (first.empty()) first = test::canonicalCells(m);
     EXPECT_EQ(test::canonicalCells(m), first);
+    // Cell data q = 1, 2, 3 on the points: each polyhedron counts once at a point, as in
+    // ParaView's Cell Data to Point Data, however many of its tetrahedra meet there (the face
+    // x = 1 is on both cubes: 1.5; counted per tetrahedron it would lean to one side).
+    const mesh::Field* q = m.findField("q");
+    ASSERT_NE(q, nullptr);
+    for (size_t p = 0; p < m.numPoints(); ++p) {
+      const glm::dvec3 x = m.points[p];
+      const float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
+      EXPECT_EQ(q->steps[0][p], want) << x.x << " " << x.y << " " << x.z;
+    }
   }
 }
 

@@ -106,6 +106,12 @@ struct MeshView {
   // these numbers instead of by their coordinates, which keeps apart the two sides of a baffle
   // (coincident vertices that are not one) when each side is on its own rank.
   IndexSpan globalIds;
+  // Optional: general polyhedra (OpenFOAM, Fluent and STAR-CCM+ cells), as VTK's face streams one
+  // after another: for each polyhedron its number of faces, then for each face its number of
+  // vertices and their ids, the faces turning the same way (all outward or all inward). Each is
+  // split into tetrahedra on its own vertices (docs/FORMATS.md, "Polyhedra"); one that cannot be
+  // is skipped with a warning. Element order for setCellField: polyhedra come last.
+  IndexSpan polyhedra;
 };
 
 struct Camera {
