@@ -94,7 +94,11 @@ std::string describeFields(const RankShare& s, const std::vector<io::FieldStepCo
 // cells). Later steps are averaged by the same averager, whose first call found the shared points.
 void averageFirstCellStep(RankShare& s, const std::string& field, Collectives& coll) {
   mesh::UnstructuredMesh& m = s.mesh;
+  // The averager counts a polyhedron's tetrahedra once at a point by their origins, which the
+  // stream took over: lent back for its construction.
+  m.cellOrigin = s.stream->fileCells;
   s.stream->cells = std::make_shared<border::CellAverager>(m);
+  std::vector<uint32_t>().swap(m.cellOrigin);
   SM_CHECK_EQ(s.stream->fileCells.size(), m.numCells());  // every element's origin kept
   std::vector<float> values;
   values.reserve(m.numCells());

@@ -10,6 +10,7 @@
 
 #include "app/cell_data_share.h"
 #include "app/comm_collectives.h"
+#include "app/rank_share.h"
 #include "border/border_exchange.h"
 #include "common/error.h"
 #include "compositor/local_communicator.h"
@@ -244,6 +245,30 @@ TEST(BorderExchange, ARankWhosePiecesHoldNoCellDataFailsWithTheOthers) {
   std::vector<UnstructuredMesh> pieces = piecesOf(whole, 2, 1);
   pieces[1].cellFields.clear();  // as a piece whose array of that name is point data
   expectAllRanksFail(pieces, 2, "rank 1 (piece 1) has no cell data asked for");
+}
+
+// Cell data of polyhedra, streamed (render's and view's way) and read whole: each polyhedron
+// counts once at each of its points however many of its tetrahedra meet there (the two cubes of
+// tests/io/data/polyhedra.vtu share the face x = 1: q there is (1 + 2) / 2).
+TEST(PolyhedraCellData, EachPolyhedronCountsOnceAtAPoint) {
+  for (bool stream : {true, false}) {
+    SCOPED_TRACE(stream ? "streamed" : "whole");
+    comp::runLocalRanks(1, [&](comp::Communicator& c) {
+      CommCollectives coll(c);
+      ShareOptions o;
+      o.read.fields = {"q"};
+      o.streamSteps = stream;
+      const RankShare s =
+          loadRankShare(std::string(SHELLMARCH_IO_TEST_DATA) + "/polyhedra.vtu", o, coll);
+      ASSERT_EQ(s.mesh.fields.size(), 1u);
+      EXPECT_EQ(s.mesh.skipped.polyhedraSplit, 3u);
+      for (size_t p = 0; p < s.mesh.numPoints(); ++p) {
+        const glm::dvec3 x = s.mesh.points[p];
+        const float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
+        EXPECT_EQ(s.mesh.fields[0].steps[0][p], want) << x.x << " " << x.y << " " << x.z;
+      }
+    });
+  }
 }
 
 }  // namespace
