@@ -83,6 +83,36 @@ void writeText(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+// Renders field f (x + 2y + 3z, mapped over [0, hi]) of `m` at a step fine enough for the
+// reference's tolerance, from the iso view, and checks it: no validation message, no lost ray,
+// every ray through the volume one segment (no shell inside it: a conforming split), and the image
+// against the CPU reference. Returns the image.
+scene::Image renderConforming(const mesh::UnstructuredMesh& m, double hi, const std::string& name) {
+  RenderSettings s;
+  s.width = 64;
+  s.height = 48;
+  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = 0;
+  s.transferFunction.hi = hi;
+  s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
+  s.dt = 0.05;
+  s.earlyTermination = 2.0;
+  s.keepSegments = true;
+  auto gpu = test::renderOnGpu(m, "f", s);
+  EXPECT_EQ(gpu.validationErrors, 0u) << name;
+  EXPECT_EQ(gpu.frame.counters.lostRays, 0u) << name;
+  size_t most = 0, hit = 0;
+  for (const auto& px : gpu.segments) {
+    most = std::max(most, px.size());
+    hit += px.empty() ? 0 : 1;
+  }
+  EXPECT_GT(hit, size_t(s.width * s.height / 4)) << name;
+  EXPECT_EQ(most, 1u) << name << ": a ray met a shell inside the volume";
+  test::expectImagesClose(name, test::renderReference(m, m.fields[0].steps[0], s), gpu.image);
+  return gpu.image;
+}
+
 TEST(Polyhedra, BlockOfPolyhedraRendersAsItsHexahedra) {
   const std::string dir = test::outputDir("Polyhedra.Render");
   const int n = 4;
@@ -96,37 +126,9 @@ TEST(Polyhedra, BlockOfPolyhedraRendersAsItsHexahedra) {
   ASSERT_EQ(meshes[0].skipped.polyhedraSplit, uint64_t(n * n * n));
   ASSERT_EQ(meshes[1].numCells(mesh::CellType::Hex), uint64_t(n * n * n));
 
-  RenderSettings s;
-  s.width = 64;
-  s.height = 48;
-  s.camera =
-      scene::frameBounds(meshes[0].bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
-  s.transferFunction = scene::makeTransferFunction("viridis");
-  s.transferFunction.lo = 0;
-  s.transferFunction.hi = 6.0 * n;
-  s.transferFunction.unitDistance = meshes[0].bounds().diagonal() / 4;
-  s.dt = 0.05;
-  s.earlyTermination = 2.0;
-  s.keepSegments = true;
-  std::vector<scene::Image> images;
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    const mesh::UnstructuredMesh& m = meshes[k];
-    auto gpu = test::renderOnGpu(m, "f", s);
-    EXPECT_EQ(gpu.validationErrors, 0u);
-    EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
-    size_t most = 0, hit = 0;
-    for (const auto& px : gpu.segments) {
-      most = std::max(most, px.size());
-      hit += px.empty() ? 0 : 1;
-    }
-    EXPECT_GT(hit, size_t(s.width * s.height / 4));
-    EXPECT_EQ(most, 1u) << (k == 0 ? "polyhedra" : "hexahedra")
-                        << ": a ray met a shell inside the block";
-    test::expectImagesClose(k == 0 ? "polyhedra_block" : "polyhedra_block_hex",
-                            test::renderReference(m, m.fields[0].steps[0], s), gpu.image);
-    images.push_back(gpu.image);
-  }
-  test::expectImagesClose("polyhedra_vs_hexahedra", images[1], images[0]);
+  const scene::Image poly = renderConforming(meshes[0], 6.0 * n, "polyhedra_block");
+  const scene::Image hex = renderConforming(meshes[1], 6.0 * n, "polyhedra_block_hex");
+  test::expectImagesClose("polyhedra_vs_hexahedra", hex, poly);
 }
 
 // Polyhedra given as face lists, in an ascii .vtu with the linear field f = x + 2y + 3z.
@@ -213,25 +215,7 @@ TEST(Polyhedra, RefinementInterfaceWithPointsOnEdges) {
   ASSERT_EQ(m.skipped.polyhedraSplit, 5u);
   ASSERT_EQ(m.skipped.polyhedra, 0u);
 
-  RenderSettings s;
-  s.width = 64;
-  s.height = 48;
-  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
-  s.transferFunction = scene::makeTransferFunction("viridis");
-  s.transferFunction.lo = 0;
-  s.transferFunction.hi = 15;
-  s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
-  s.dt = 0.05;
-  s.earlyTermination = 2.0;
-  s.keepSegments = true;
-  auto gpu = test::renderOnGpu(m, "f", s);
-  EXPECT_EQ(gpu.validationErrors, 0u);
-  EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
-  size_t most = 0;
-  for (const auto& px : gpu.segments) most = std::max(most, px.size());
-  EXPECT_EQ(most, 1u) << "a ray met a shell inside the cells";
-  test::expectImagesClose("polyhedra_refinement", test::renderReference(m, m.fields[0].steps[0], s),
-                          gpu.image);
+  renderConforming(m, 15, "polyhedra_refinement");
 }
 
 // A block of cube polyhedra in two .pvtu pieces, each numbering its points its own (random) way:
@@ -278,29 +262,11 @@ TEST(Polyhedra, PiecesOfAPvtuMeetWithoutShells) {
   ASSERT_EQ(m.skipped.polyhedraSplit, 16u);
   ASSERT_EQ(m.numPoints(), 45u);  // 2 x 27 welded along the 9 points of x = 2
 
-  RenderSettings s;
-  s.width = 64;
-  s.height = 48;
-  s.camera = scene::frameBounds(m.bounds(), scene::ViewPreset::Iso, double(s.width) / s.height);
-  s.transferFunction = scene::makeTransferFunction("viridis");
-  s.transferFunction.lo = 0;
-  s.transferFunction.hi = 14;
-  s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
-  s.dt = 0.05;
-  s.earlyTermination = 2.0;
-  s.keepSegments = true;
   // One cluster (the pieces are clusters 0 and 1 when read; join them so that the walk has to
   // cross where they meet rather than stop at a cluster's shell).
   mesh::UnstructuredMesh one = m;
   for (auto& c : one.clusters) std::fill(c.begin(), c.end(), 0);
-  auto gpu = test::renderOnGpu(one, "f", s);
-  EXPECT_EQ(gpu.validationErrors, 0u);
-  EXPECT_EQ(gpu.frame.counters.lostRays, 0u);
-  size_t most = 0;
-  for (const auto& px : gpu.segments) most = std::max(most, px.size());
-  EXPECT_EQ(most, 1u) << "a ray met a shell where the pieces meet";
-  test::expectImagesClose("polyhedra_pieces", test::renderReference(one, one.fields[0].steps[0], s),
-                          gpu.image);
+  renderConforming(one, 14, "polyhedra_pieces");
 }
 
 }  // namespace
