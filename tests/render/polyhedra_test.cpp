@@ -20,6 +20,28 @@
 namespace sm::render {
 namespace {
 
+std::string dataArray(const char* type, const char* name, const std::string& values,
+                      int comps = 1) {
+  return std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
+         "\" NumberOfComponents=\"" + std::to_string(comps) + "\" format=\"ascii\">" + values +
+         "</DataArray>";
+}
+
+// One ascii piece: points `xyz`, point field f, cells as VTK lists them (`polyArrays`: the
+// polyhedra's face arrays, if any).
+std::string asciiVtu(size_t numPoints, size_t numCells, const std::string& xyz,
+                     const std::string& f, const std::string& conn, const std::string& offsets,
+                     const std::string& types, const std::string& polyArrays = {}) {
+  return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
+         "NumberOfPoints=\"" +
+         std::to_string(numPoints) + "\" NumberOfCells=\"" + std::to_string(numCells) +
+         "\"><PointData>" + dataArray("Float64", "f", f) + "</PointData><Points>" +
+         dataArray("Float64", "Points", xyz, 3) + "</Points><Cells>" +
+         dataArray("Int64", "connectivity", conn) + dataArray("Int64", "offsets", offsets) +
+         dataArray("UInt8", "types", types) + polyArrays +
+         "</Cells></Piece></UnstructuredGrid></VTKFile>";
+}
+
 // An n^3 block of unit cubes as an ascii .vtu: hexahedra, or polyhedra with their six faces.
 std::string cubeBlock(int n, bool polyhedra) {
   const int m = n + 1;
@@ -62,21 +84,10 @@ std::string cubeBlock(int n, bool polyhedra) {
               std::to_string(xyz[3 * p + 2]) + " ";
     values += std::to_string(xyz[3 * p] + 2 * xyz[3 * p + 1] + 3 * xyz[3 * p + 2]) + " ";
   }
-  auto array = [](const char* type, const char* name, const std::string& v, int comps = 1) {
-    return std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
-           "\" NumberOfComponents=\"" + std::to_string(comps) + "\" format=\"ascii\">" + v +
-           "</DataArray>";
-  };
-  return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
-         "NumberOfPoints=\"" +
-         std::to_string(id.size()) + "\" NumberOfCells=\"" + std::to_string(cells) +
-         "\"><PointData>" + array("Float64", "f", values) + "</PointData><Points>" +
-         array("Float64", "Points", points, 3) + "</Points><Cells>" +
-         array("Int64", "connectivity", conn) + array("Int64", "offsets", offsets) +
-         array("UInt8", "types", types) +
-         (polyhedra ? array("Int64", "faces", stream) + array("Int64", "faceoffsets", faceEnds)
-                    : std::string()) +
-         "</Cells></Piece></UnstructuredGrid></VTKFile>";
+  return asciiVtu(
+      id.size(), size_t(cells), points, values, conn, offsets, types,
+      polyhedra ? dataArray("Int64", "faces", stream) + dataArray("Int64", "faceoffsets", faceEnds)
+                : std::string());
 }
 
 void writeText(const std::string& path, const std::string& text) {
@@ -158,19 +169,8 @@ std::string polyhedraVtu(const std::vector<glm::dvec3>& points,
     types += "42 ";
     ends += std::to_string(nstream) + " ";
   }
-  auto array = [](const char* type, const char* name, const std::string& v, int comps = 1) {
-    return std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
-           "\" NumberOfComponents=\"" + std::to_string(comps) + "\" format=\"ascii\">" + v +
-           "</DataArray>";
-  };
-  return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
-         "NumberOfPoints=\"" +
-         std::to_string(points.size()) + "\" NumberOfCells=\"" + std::to_string(cells.size()) +
-         "\"><PointData>" + array("Float64", "f", f) + "</PointData><Points>" +
-         array("Float64", "Points", xyz, 3) + "</Points><Cells>" +
-         array("Int64", "connectivity", conn) + array("Int64", "offsets", offsets) +
-         array("UInt8", "types", types) + array("Int64", "faces", stream) +
-         array("Int64", "faceoffsets", ends) + "</Cells></Piece></UnstructuredGrid></VTKFile>";
+  return asciiVtu(points.size(), cells.size(), xyz, f, conn, offsets, types,
+                  dataArray("Int64", "faces", stream) + dataArray("Int64", "faceoffsets", ends));
 }
 
 // Where a refined region meets a coarse cell, as snappyHexMesh leaves it: the coarse cube
