@@ -271,31 +271,25 @@ TEST_F(InsituApi, CellFieldIsTheMeanOfTheElementsAtEachVertex) {
 // polyhedron's value reaching all its tetrahedra), and a cell field of polyhedra after hexahedra
 // takes its values in the caller's order: the four types, then the polyhedra.
 TEST_F(InsituApi, PolyhedraRenderAsTheCellsTheyAre) {
-  const int n = 3;
-  auto id = [&](int i, int j, int k) { return int64_t((k * (n + 1) + j) * (n + 1) + i); };
-  std::vector<double> xyz;
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) xyz.insert(xyz.end(), {double(i), double(j), double(k)});
+  // Unit cubes (a 3^3 grid over [0, 3]^3), each also written as a polyhedron of its six faces.
+  const SimMesh grid = simMesh(sm::test::hexGrid(3, 3.0));
+  const std::vector<double>& xyz = grid.xyz;
+  const std::vector<int64_t>& hexes = grid.cells[3];
   const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                            {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  std::vector<int64_t> hexes, polyhedra;
-  std::vector<float> cells;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int64_t c[8] = {
-            id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
-            id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-        hexes.insert(hexes.end(), c, c + 8);
-        polyhedra.push_back(6);
-        for (const auto& f : faces)
-          polyhedra.insert(polyhedra.end(), {4, c[f[0]], c[f[1]], c[f[2]], c[f[3]]});
-        cells.push_back(float(i + 3 * j + 9 * k % 5));
-      }
-  std::vector<float> vertexField;
-  for (size_t v = 0; v < xyz.size(); v += 3)
-    vertexField.push_back(float(xyz[v] + 2 * xyz[v + 1] + 3 * xyz[v + 2]));
+  std::vector<int64_t> polyhedra;
+  for (size_t h = 0; h < hexes.size(); h += 8) {
+    polyhedra.push_back(6);
+    for (const auto& f : faces)
+      polyhedra.insert(polyhedra.end(), {4, hexes[h + size_t(f[0])], hexes[h + size_t(f[1])],
+                                         hexes[h + size_t(f[2])], hexes[h + size_t(f[3])]});
+  }
+  const std::vector<float> cells = cellField(grid, [](glm::dvec3 c) {
+    const int i = int(c.x), j = int(c.y), k = int(c.z);
+    return float(i + 3 * j + 9 * k % 5);
+  });
+  const std::vector<float> vertexField =
+      grid.field([](glm::dvec3 p) { return float(p.x + 2 * p.y + 3 * p.z); });
   api::RenderSettings s;
   s.width = 40;
   s.height = 32;
