@@ -273,15 +273,15 @@ void LegacyReader::addCellsNew(mesh::MeshBuilder& b, const std::vector<int64_t>&
                                const std::vector<int64_t>& types,
                                const std::vector<int64_t>& ghost) {
   int64_t ids[kMaxIds];
+  auto id = [&](int64_t i) {
+    T v = loadAs<T, Swap>(conn_.data + i * sizeof(T));
+    if constexpr (std::is_unsigned_v<T>)
+      return v > T(INT64_MAX) ? INT64_MAX : static_cast<int64_t>(v);
+    else
+      return static_cast<int64_t>(v);
+  };
   for (uint64_t c = 0; c < numCells_; ++c) {
     if (ghostCells_.skip(ghost, c)) continue;
-    auto id = [&](int64_t i) {
-      T v = loadAs<T, Swap>(conn_.data + i * sizeof(T));
-      if constexpr (std::is_unsigned_v<T>)
-        return v > T(INT64_MAX) ? INT64_MAX : static_cast<int64_t>(v);
-      else
-        return static_cast<int64_t>(v);
-    };
     if (types[c] == kPolyhedron) {  // its connectivity is its face stream
       stream_.resize(size_t(offsets[c + 1] - offsets[c]));
       for (size_t i = 0; i < stream_.size(); ++i) stream_[i] = id(offsets[c] + int64_t(i));

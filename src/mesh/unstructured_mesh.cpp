@@ -161,10 +161,11 @@ std::string cellArrayHint(const std::vector<std::string>& cellArrays, const std:
 
 namespace {
 
-// Calls use(point, element) for every vertex of every element (elements counted type by type, in
-// the order of `cells`), once per cell of the file at each point: the tetrahedra a polyhedron was
-// split into (consecutive, with one cell origin) count once at a point they share, as the
-// polyhedron does in ParaView's Cell Data to Point Data, not once per tetrahedron.
+// Calls use(point, type index, index within the type, element) for every vertex of every element
+// (elements counted type by type, in the order of `cells`), once per cell of the file at a point:
+// the tetrahedra a polyhedron was split into (consecutive, with one cell origin) count once at a
+// point they share, as the polyhedron does in ParaView's Cell Data to Point Data, not once per
+// tetrahedron.
 template <class Use>
 void forEachCellUse(const UnstructuredMesh& m, uint64_t numPoints, Use&& use) {
   const bool split = m.skipped.polyhedraSplit > 0 && m.cellOrigin.size() == m.numCells();
@@ -180,7 +181,7 @@ void forEachCellUse(const UnstructuredMesh& m, uint64_t numPoints, Use&& use) {
           if (lastOrigin[v] == m.cellOrigin[element]) continue;
           lastOrigin[v] = m.cellOrigin[element];
         }
-        use(v, element);
+        use(v, t, i / nv, element);
       }
   }
 }
@@ -189,7 +190,7 @@ void forEachCellUse(const UnstructuredMesh& m, uint64_t numPoints, Use&& use) {
 
 std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m) {
   std::vector<double> uses(m.numPoints(), 0.0);
-  forEachCellUse(m, m.numPoints(), [&](uint32_t v, size_t) { uses[v] += 1.0; });
+  forEachCellUse(m, m.numPoints(), [&](uint32_t v, int, size_t, size_t) { uses[v] += 1.0; });
   return uses;
 }
 
@@ -197,19 +198,18 @@ std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, std::span<const 
                                      uint64_t numPoints) {
   SM_CHECK_EQ(perElement.size(), m.numCells());
   std::vector<double> sum(numPoints, 0.0);
-  forEachCellUse(m, numPoints, [&](uint32_t v, size_t e) { sum[v] += perElement[e]; });
+  forEachCellUse(m, numPoints, [&](uint32_t v, int, size_t, size_t e) { sum[v] += perElement[e]; });
   return sum;
 }
 
 std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField& f, size_t step) {
-  std::vector<float> flat;
-  flat.reserve(m.numCells());
-  for (int t = 0; t < kNumCellTypes; ++t) {
-    const auto& values = f.steps[step][t];
-    SM_CHECK_EQ(values.size() * numVerts(kAllCellTypes[t]), m.cells[t].size());
-    flat.insert(flat.end(), values.begin(), values.end());
-  }
-  return cellSumsAtPoints(m, flat, m.numPoints());
+  const auto& perType = f.steps[step];
+  for (int t = 0; t < kNumCellTypes; ++t)
+    SM_CHECK_EQ(perType[t].size() * numVerts(kAllCellTypes[t]), m.cells[t].size());
+  std::vector<double> sum(m.numPoints(), 0.0);
+  forEachCellUse(m, m.numPoints(),
+                 [&](uint32_t v, int t, size_t i, size_t) { sum[v] += perType[t][i]; });
+  return sum;
 }
 
 std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses) {
