@@ -1,5 +1,6 @@
 #include "io/weld.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
@@ -142,14 +143,22 @@ void joinCellFields(const std::string& source, std::vector<mesh::UnstructuredMes
 }
 
 // Cell origins follow the cells too, each piece's numbered after the cells of the pieces before it
-// (as readCellFieldStep numbers the values of the pieces it reads). Kept only when every piece has
-// them.
+// (as readCellFieldStep numbers the values of the pieces it reads). A reader asked for origins
+// gives every piece its own; otherwise only pieces with polyhedra have them (so that a
+// polyhedron's tetrahedra count once at a point: mesh::cellUsesAtPoints), and the other pieces'
+// elements are numbered in their order, which tells cells apart as well but does not say where
+// in the file each was (such a mesh is not read step by step by origin).
 void joinCellOrigins(const std::vector<mesh::UnstructuredMesh>& pieces,
                      mesh::UnstructuredMesh& out) {
-  for (const auto& p : pieces)
-    if (p.cellOrigin.size() != p.numCells()) return;
+  auto hasOrigins = [](const mesh::UnstructuredMesh& p) {
+    return p.cellOrigin.size() == p.numCells() && (p.numCells() > 0 || p.fileCells > 0);
+  };
+  if (std::none_of(pieces.begin(), pieces.end(), hasOrigins)) return;
+  auto span = [&](const mesh::UnstructuredMesh& p) {
+    return hasOrigins(p) ? p.fileCells : p.numCells();
+  };
   uint64_t total = 0;
-  for (const auto& p : pieces) total += p.fileCells;
+  for (const auto& p : pieces) total += span(p);
   if (total > 0xFFFFFFFFull)
     throw FileError(out.source, "the pieces hold ", total,
                     " cells: more than 2^32 - 1, the most whose origins can be kept");
@@ -160,9 +169,10 @@ void joinCellOrigins(const std::vector<mesh::UnstructuredMesh>& pieces,
       uint64_t first = 0;  // p's elements of the types before t
       for (int u = 0; u < t; ++u) first += p.numCells(mesh::kAllCellTypes[u]);
       const uint64_t n = p.numCells(mesh::kAllCellTypes[t]);
-      for (uint64_t i = 0; i < n; ++i)
-        out.cellOrigin.push_back(uint32_t(offset + p.cellOrigin[first + i]));
-      offset += p.fileCells;
+      const bool own = hasOrigins(p);
+      for (uint64_t i = first; i < first + n; ++i)
+        out.cellOrigin.push_back(uint32_t(offset + (own ? p.cellOrigin[i] : i)));
+      offset += span(p);
     }
   }
 }

@@ -81,7 +81,9 @@ struct UnstructuredMesh {
   // tetrahedra of one then count once at a point: cellUsesAtPoints): element i, counted type by
   // type in the order of `cells`, is cell cellOrigin[i] of the files read, their cells (skipped
   // ones included) numbered one after another; fileCells is how many there are. A later step of
-  // cell data is then read without the cells (io::readCellFieldStep).
+  // cell data is then read without the cells (io::readCellFieldStep). Where origins were not asked
+  // for and only some pieces of a .pvtu hold polyhedra, the other pieces' elements are numbered in
+  // their order (io::weldPieces): cells still count once, but such origins are not file numbers.
   std::vector<uint32_t> cellOrigin;
   uint64_t fileCells = 0;
 

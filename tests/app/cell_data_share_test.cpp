@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "app/cell_data_share.h"
 #include "app/comm_collectives.h"
@@ -17,6 +19,7 @@
 #include "gen/generate.h"
 #include "io/weld.h"
 #include "partition/partition.h"
+#include "support/test_support.h"
 
 namespace sm::app {
 namespace {
@@ -266,6 +269,52 @@ TEST(PolyhedraCellData, EachPolyhedronCountsOnceAtAPoint) {
         const glm::dvec3 x = s.mesh.points[p];
         const float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
         EXPECT_EQ(s.mesh.fields[0].steps[0][p], want) << x.x << " " << x.y << " " << x.z;
+      }
+    });
+  }
+}
+
+// The same polyhedra as one piece of a .pvtu whose other piece holds a hexahedron (q = 4) on top
+// of the second cube (sharing its face z = 1, and an edge with the first cube): only the first
+// piece has polyhedra, so only it records where its elements came from, and the join must still
+// count each polyhedron once at a point (it counted every tetrahedron when origins were kept only
+// if every piece had them).
+TEST(PolyhedraCellData, APieceWithoutPolyhedraKeepsTheCountRight) {
+  const std::string dir = test::outputDir("PolyhedraCellData.Pieces");
+  std::filesystem::copy_file(std::string(SHELLMARCH_IO_TEST_DATA) + "/polyhedra.vtu",
+                             dir + "/poly.vtu", std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir + "/hex.vtu")
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"><UnstructuredGrid>"
+         "<Piece NumberOfPoints=\"8\" NumberOfCells=\"1\"><CellData>"
+         "<DataArray type=\"Float32\" Name=\"q\" format=\"ascii\">4</DataArray></CellData>"
+         "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+         "1 0 1 2 0 1 2 1 1 1 1 1 1 0 2 2 0 2 2 1 2 1 1 2</DataArray></Points><Cells>"
+         "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 2 3 4 5 6 7"
+         "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">8</DataArray>"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">12</DataArray></Cells>"
+         "</Piece></UnstructuredGrid></VTKFile>\n";
+  std::ofstream(dir + "/both.pvtu")
+      << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\"><PUnstructuredGrid GhostLevel=\"0\">"
+         "<PCellData><PDataArray type=\"Float32\" Name=\"q\"/></PCellData>"
+         "<PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/></PPoints>"
+         "<Piece Source=\"poly.vtu\"/><Piece Source=\"hex.vtu\"/></PUnstructuredGrid></VTKFile>\n";
+  for (bool stream : {true, false}) {
+    SCOPED_TRACE(stream ? "streamed" : "whole");
+    comp::runLocalRanks(1, [&](comp::Communicator& c) {
+      CommCollectives coll(c);
+      ShareOptions o;
+      o.read.fields = {"q"};
+      o.streamSteps = stream;
+      const RankShare s = loadRankShare(dir + "/both.pvtu", o, coll);
+      ASSERT_EQ(s.mesh.fields.size(), 1u);
+      EXPECT_EQ(s.mesh.skipped.polyhedraSplit, 3u);
+      for (size_t p = 0; p < s.mesh.numPoints(); ++p) {
+        const glm::dvec3 x = s.mesh.points[p];
+        float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
+        if (x.z == 2.0) want = 4.0f;
+        if (x.z == 1.0 && x.x == 2.0) want = (2.0f + 4.0f) / 2.0f;
+        if (x.z == 1.0 && x.x == 1.0) want = (1.0f + 2.0f + 4.0f) / 3.0f;
+        EXPECT_FLOAT_EQ(s.mesh.fields[0].steps[0][p], want) << x.x << " " << x.y << " " << x.z;
       }
     });
   }
