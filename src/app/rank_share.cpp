@@ -89,10 +89,24 @@ std::string describeFields(const RankShare& s, const std::vector<io::FieldStepCo
   return text.empty() ? "no fields" : text;
 }
 
-// Flattens step 0 of a streamed cell field (type after type, as CellAverager takes values) and
+// The fields asked for that are cell data, in the order asked, the same on every rank: a rank
+// without pieces holds none and asks the others (one collective per field asked for).
+std::vector<std::string> agreedCellFields(const mesh::UnstructuredMesh& m,
+                                          const std::vector<std::string>& asked,
+                                          Collectives& coll) {
+  std::vector<std::string> names;
+  for (const std::string& name : asked) {
+    const bool mine = std::any_of(m.cellFields.begin(), m.cellFields.end(),
+                                  [&](const mesh::CellField& f) { return f.name == name; });
+    if (coll.max(mine ? 1.0 : 0.0) > 0.0) names.push_back(name);
+  }
+  return names;
+}
+
+// Flattens step 0 of each streamed cell field (type after type, as CellAverager takes values) and
 // averages it onto the points over all ranks (collective: a rank without pieces takes part with no
 // cells). Later steps are averaged by the same averager, whose first call found the shared points.
-void averageFirstCellStep(RankShare& s, const std::string& field, Collectives& coll) {
+void averageFirstCellSteps(RankShare& s, const std::vector<std::string>& asked, Collectives& coll) {
   mesh::UnstructuredMesh& m = s.mesh;
   // The averager counts a polyhedron's tetrahedra once at a point by their origins, which the
   // stream took over: lent back for its construction.
@@ -100,21 +114,29 @@ void averageFirstCellStep(RankShare& s, const std::string& field, Collectives& c
   s.stream->cells = std::make_shared<border::CellAverager>(m);
   std::vector<uint32_t>().swap(m.cellOrigin);
   SM_CHECK_EQ(s.stream->fileCells.size(), m.numCells());  // every element's origin kept
-  std::vector<float> values;
-  values.reserve(m.numCells());
-  for (const mesh::CellField& f : m.cellFields)
-    if (f.name == field && !f.steps.empty())
-      for (const std::vector<float>& perType : f.steps[0])
-        values.insert(values.end(), perType.begin(), perType.end());
-  // Ranks agreed on what their pieces hold (readPieces); one rank's pieces agree by the weld.
-  if (values.size() != m.numCells())
-    throw FileError(m.source, "holds no cell data '", field, "' for its ", m.numCells(), " cells");
-  std::vector<float> points = s.stream->cells->toPoints(values, coll);
-  if (coll.rank() == 0)
-    log::info(m.source, ": cell data '", field,
-              "' is streamed: one step in memory, averaged onto the points over all ranks when its "
+  s.stream->cellFields = agreedCellFields(m, asked, coll);
+  for (const std::string& field : s.stream->cellFields) {
+    std::vector<float> values;
+    values.reserve(m.numCells());
+    for (const mesh::CellField& f : m.cellFields)
+      if (f.name == field && !f.steps.empty())
+        for (const std::vector<float>& perType : f.steps[0])
+          values.insert(values.end(), perType.begin(), perType.end());
+    // Ranks agreed on what their pieces hold (readPieces); one rank's pieces agree by the weld.
+    if (values.size() != m.numCells())
+      throw FileError(m.source, "holds no cell data '", field, "' for its ", m.numCells(),
+                      " cells");
+    std::vector<float> points = s.stream->cells->toPoints(values, coll);
+    if (!m.cellFields.empty()) m.fields.push_back({field, {std::move(points)}});
+  }
+  if (coll.rank() == 0 && !s.stream->cellFields.empty()) {
+    std::string names;
+    for (const std::string& n : s.stream->cellFields)
+      names += (names.empty() ? "'" : ", '") + n + "'";
+    log::info(m.source, ": cell data ", names, s.stream->cellFields.size() == 1 ? " is" : " are",
+              " streamed: one step in memory, averaged onto the points over all ranks when its "
               "frame comes");
-  if (!m.cellFields.empty()) m.fields.push_back({field, {std::move(points)}});
+  }
   m.cellFields.clear();
 }
 
@@ -155,14 +177,14 @@ RankShare readPieces(const std::string& path, const ShareOptions& o, bool cellDa
     s.mesh.source = path;  // a rank with no clusters renders nothing, but takes part
   }
   // One rank reading every piece refuses pieces whose point fields differ (io::listFieldSteps);
-  // ranks reading some each must come to the same answer. (A stream of cell data lists the one
-  // cell field asked for.)
+  // ranks reading some each must come to the same answer. (A stream of cell data lists the
+  // fields asked for, cell data marked so.)
   if (coll.size() > 1)
     checkPiecesAgree(path, s.stream && cellData ? "cell data" : "point fields",
                      describeFields(s, listedFields(path, o.read, s)), !s.clusters.empty(),
                      pieceNames(path, s), coll);
   if (cellData && s.stream)
-    averageFirstCellStep(s, o.read.fields.at(0), coll);
+    averageFirstCellSteps(s, o.read.fields, coll);
   else if (cellData)
     cellDataToPointsOverRanks(s.mesh, !s.clusters.empty(), pieceNames(path, s), coll);
   return s;
@@ -199,7 +221,7 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, bool cellDat
       s.stream->fileCellCount = whole.fileCells;
     }
     s.mesh = std::move(whole);
-    if (streamCells) averageFirstCellStep(s, o.read.fields.at(0), coll);
+    if (streamCells) averageFirstCellSteps(s, o.read.fields, coll);
   } else {
     partition::ExtractedClusters mine = partition::extractClustersWithPointMap(whole, s.clusters);
     if (s.stream)
@@ -220,16 +242,19 @@ bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Col
   return coll.max(mine) > 0.0;
 }
 
+bool streamsCellData(const std::string& path, const ShareOptions& o, int ranks) {
+  // Each rank averages its own elements' values with the other ranks' sums at the points they
+  // share (its pieces, or the whole mesh on one rank); a whole mesh split among ranks after
+  // reading keeps every step in memory.
+  const bool pieces = io::readsByPiece(path) && o.metisClusters == 0;
+  return io::readsStepsAlone(path) && (pieces || ranks == 1);
+}
+
 RankShare loadRankShare(const std::string& path, const ShareOptions& o, Collectives& coll) {
-  // Cell data is streamed when each rank averages its own elements' values with the other ranks'
-  // sums at the points they share (its pieces, or the whole mesh on one rank), one field at a
-  // time; a whole mesh split among ranks after reading keeps every step in memory.
   const bool cellData = o.cellData ? *o.cellData : fieldsAreCellData(path, o.read, coll);
   const bool pieces = io::readsByPiece(path) && o.metisClusters == 0;
   ShareOptions reading = o;
-  if (cellData)
-    reading.streamSteps = o.streamSteps && o.read.fields.size() == 1 && io::readsStepsAlone(path) &&
-                          (pieces || coll.size() == 1);
+  if (cellData) reading.streamSteps = o.streamSteps && streamsCellData(path, o, coll.size());
   RankShare s =
       pieces ? readPieces(path, reading, cellData, coll) : readWhole(path, reading, cellData, coll);
   s.wholeBounds = globalBounds(s.mesh.bounds(), coll);

@@ -20,8 +20,8 @@ struct ShareOptions {
   int metisClusters = 0;  // > 0: split into this many clusters with METIS (ignores file clusters)
   // Keep one time step in memory and read the others from the file when they are needed (.vtu and
   // .pvtu and series of them; other formats are loaded whole, every step in memory). Cell data is
-  // streamed too when one field is asked for and each rank reads its own pieces (or one rank
-  // reads the whole file).
+  // streamed too when each rank reads its own pieces or one rank reads the whole file
+  // (streamsCellData), any number of fields.
   bool streamSteps = false;
   // Whether read.fields names cell data, when the caller has asked fieldsAreCellData already
   // (unset: loadRankShare asks, one header read and one collective).
@@ -38,7 +38,8 @@ struct StepStream {
   std::vector<io::FieldStepCount> fieldSteps;   // of this rank's clusters
   std::vector<uint32_t> fileCells;              // cell data: UnstructuredMesh::cellOrigin
   uint64_t fileCellCount = 0;                   // and UnstructuredMesh::fileCells
-  std::shared_ptr<border::CellAverager> cells;  // set when the field streamed is cell data
+  std::shared_ptr<border::CellAverager> cells;  // set when a field streamed is cell data
+  std::vector<std::string> cellFields;          // those fields, the same on every rank
 };
 
 struct RankShare {
@@ -53,6 +54,10 @@ struct RankShare {
 
 // True when read.fields names cell data (io::asksForCellData), decided by rank 0 for all ranks.
 bool fieldsAreCellData(const std::string& path, const io::ReadOptions& read, Collectives& coll);
+
+// True when loadRankShare streams cell data of `path` on `ranks` ranks with options o: the format
+// reads steps alone, and each rank reads its own pieces (or one rank reads the whole file).
+bool streamsCellData(const std::string& path, const ShareOptions& o, int ranks);
 
 // Reads what this rank needs. A .pvtu is split by pieces: each rank reads only its own pieces
 // (assigned to balance element counts, from the pieces' headers); cell data asked for as the field

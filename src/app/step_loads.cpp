@@ -30,7 +30,7 @@ void StepLoads::prefetch(const std::string& field, uint64_t step) {
   if (ahead_ && *ahead_ == std::pair(field, step)) return;
   discard();
   ahead_.emplace(field, step);
-  if (!source_.collective()) {
+  if (!source_.collective(field)) {
     prefetcher_.prefetch(load(field, step, true));
     return;
   }

@@ -1,5 +1,6 @@
 #include "app/step_source.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 
@@ -22,6 +23,12 @@ mesh::Range finiteRange(const std::vector<float>& values) {
 
 StepSource::StepSource(const std::string& path, const RankShare& share, Collectives& coll)
     : path_(path), share_(share), coll_(coll), numPoints_(share.mesh.numPoints()) {}
+
+bool StepSource::collective(const std::string& field) const {
+  if (!share_.stream || !share_.stream->cells) return false;
+  const std::vector<std::string>& cells = share_.stream->cellFields;
+  return std::find(cells.begin(), cells.end(), field) != cells.end();
+}
 
 uint64_t StepSource::numSteps(const std::string& field) const {
   if (share_.stream) {
@@ -76,7 +83,7 @@ std::vector<float> StepSource::scalarsFromCells(const prep::PreparedRank& rank,
 std::vector<float> StepSource::read(const std::string& field, uint64_t step, unsigned threads,
                                     const io::StopRequested& stop) const {
   const StepStream& s = *share_.stream;
-  if (collective()) return s.cells->toPoints(readCells(field, step, threads, stop), coll_);
+  if (collective(field)) return s.cells->toPoints(readCells(field, step, threads, stop), coll_);
   io::ReadOptions o = s.read;
   if (threads) o.threads = threads;
   o.stopRequested = stop;
@@ -89,7 +96,7 @@ std::vector<float> StepSource::read(const std::string& field, uint64_t step, uns
 }
 
 mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
-  if (collective()) {
+  if (collective(field)) {
     // Step 0 was averaged at load and is in the mesh (on the ranks with points); a later step is
     // averaged now, by every rank, with or without points.
     if (step > 0) return finiteRange(read(field, step));
@@ -103,7 +110,7 @@ mesh::Range StepSource::range(const std::string& field, uint64_t step) const {
 std::vector<float> StepSource::scalars(const prep::PreparedRank& rank, const std::string& field,
                                        uint64_t step, unsigned threads,
                                        const io::StopRequested& stop) const {
-  if (collective()) return scalarsFromCells(rank, readCells(field, step, threads, stop));
+  if (collective(field)) return scalarsFromCells(rank, readCells(field, step, threads, stop));
   if (rank.numVertices() == 0) return {};
   const uint64_t n = numSteps(field);
   if (n == 0) {

@@ -1,7 +1,7 @@
 // Where a rank's field steps come from while it renders a sequence: the file, one step at a time
 // (a streamed share, see RankShare::stream), or the mesh in memory. Steps are handed out in the
 // prepared vertex order, ready for the GPU. A streamed cell field is averaged onto the points with
-// every rank's help: its steps are collective (collective()).
+// every rank's help: its steps are collective (collective(field)).
 #pragma once
 
 #include <cstdint>
@@ -27,10 +27,11 @@ class StepSource {
   uint64_t numSteps(const std::string& field) const;
   // Whether this rank has points (its share's, counted before preparation took them out).
   bool hasPoints() const { return numPoints_ > 0; }
-  // True when range() and scalars() are collective (a streamed cell field): every rank calls them
-  // for the same steps in the same order, on the thread that makes MPI calls. The file reads can
-  // run ahead on another thread: scalarsFromCells(rank, readCells(field, step)) is scalars().
-  bool collective() const { return share_.stream && share_.stream->cells; }
+  // True when range() and scalars() of `field` are collective (a streamed cell field): every rank
+  // calls them for the same steps in the same order, on the thread that makes MPI calls. The file
+  // reads can run ahead on another thread: scalarsFromCells(rank, readCells(field, step)) is
+  // scalars().
+  bool collective(const std::string& field) const;
 
   // Range of one step over this rank's points (empty when it lacks the field or the step).
   mesh::Range range(const std::string& field, uint64_t step) const;

@@ -293,6 +293,18 @@ std::vector<float> readCellFieldStep(const std::string& path, const std::string&
   return mapValues(path, std::move(values), cellMap, Data::Cells);
 }
 
+std::vector<std::string> listCellData(const std::string& path, const ReadOptions& options) {
+  if (isSeries(path)) return listCellData(readSeriesIndex(path).at(0).file, options);
+  if (fileExtension(path) != ".vtu" && !isPieceIndex(path)) return {};
+  const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
+  FileBytes bytes = FileBytes::openLazily(file);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
+  std::vector<std::string> names;
+  for (const ArrayInfo& a : vtuCellArrays(doc, vtuPieces(doc).at(0)))
+    if (!a.identifier) names.push_back(a.name);
+  return dataCellArrays(names, options);
+}
+
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
   if (isSeries(path)) return asksForCellData(readSeriesIndex(path).at(0).file, options);
   const std::string ext = fileExtension(path);

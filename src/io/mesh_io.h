@@ -105,6 +105,11 @@ std::vector<FieldStepCount> listFieldSteps(const std::string& path,
 // not streamed step by step, and a partitioned mesh must be read whole before it is split.
 bool asksForCellData(const std::string& path, const ReadOptions& options);
 
+// The cell data arrays a .vtu, a .pvtu's first piece or a series' first file holds (numeric, not
+// bookkeeping or cluster ids; a vector once, by name), from its XML header; empty for other
+// formats. What ReadOptions::fields may name as cell data.
+std::vector<std::string> listCellData(const std::string& path, const ReadOptions& options = {});
+
 // Step `step` of point field `field` ("NAME" or "NAME[k]", as ReadOptions::fields), read from the
 // file without its points and cells: only that field's DataArray is decoded (.vtu, and the .vtu
 // pieces in options.pieces of a .pvtu). Values come in the order of the points of the pieces

@@ -13,6 +13,8 @@
 #include <glm/geometric.hpp>
 
 #include "common/file_util.h"
+#include "gen/generate.h"
+#include "io/mesh_io.h"
 #include "support/test_support.h"
 #include "viewer_checks.h"
 #include "viewer_runner.h"
@@ -270,6 +272,54 @@ TEST(ViewerHeadless, EveryFieldStepsThroughItsTimeSteps) {
       EXPECT_NEAR(j["range"][0].get<double>(), f["range"][0].get<double>(), 1e-5);
       EXPECT_NEAR(j["range"][1].get<double>(), f["range"][1].get<double>(), 1e-5);
     }
+}
+
+// A file of cell data alone (a cell-centred solver's output) is browsed like point data: the
+// viewer opens without --field on its first array and the field key goes through the others, each
+// streamed a step at a time and ranged over its steps as `info` ranges it, on one rank and on two
+// that share the pieces' points.
+TEST(ViewerHeadless, CellDataIsBrowsedLikePointData) {
+  const std::string dir = outputDir("ViewerHeadless.CellData");
+  mesh::UnstructuredMesh m = gen::cube(gen::CubeSplit::Hex, 4);
+  for (int t = 0; t < mesh::kNumCellTypes; ++t) {
+    const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+    for (size_t e = 0; e < m.clusters[t].size(); ++e)
+      m.clusters[t][e] = int32_t(m.points[m.cells[t][e * nv]].x * 2.99);  // 3 slabs
+  }
+  for (int f = 0; f < 2; ++f) {
+    mesh::CellField cf{f == 0 ? "pressure" : "density", {}};
+    for (int s = 0; s < (f == 0 ? 1 : 3); ++s) {
+      auto& perType = cf.steps.emplace_back();
+      for (int t = 0; t < mesh::kNumCellTypes; ++t)
+        for (size_t e = 0; e < m.clusters[t].size(); ++e)
+          perType[t].push_back(float((f + 1) * (e % 7) + 10 * s));
+    }
+    m.cellFields.push_back(std::move(cf));
+  }
+  const std::string mesh = dir + "/cells.pvtu";
+  io::writePvtu(mesh, m);
+  CommandResult info =
+      runCommand(shellmarch() + " info " + quote(mesh) + " --field density --json", dir, "info");
+  ASSERT_EQ(info.status, 0) << info.err;
+  const nlohmann::json density = nlohmann::json::parse(info.out)["fields"][0];
+  ASSERT_EQ(density["steps"], 3);
+  const std::string script =
+      writeFile(dir, "keys.txt", "frame\nkey f\nframe\nkey right\nframe\nquit\n");
+  for (const char* launch : {"", "mpi"}) {
+    SCOPED_TRACE(*launch ? "2 ranks" : "1 rank");
+    const std::string view = std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") +
+                             (*launch ? mpiexec() + " -n 2 --oversubscribe " : "") + shellmarch() +
+                             " view " + quote(mesh) +
+                             " --size 32x24 --headless --print-camera --script " + quote(script);
+    CommandResult r = runCommand(view, dir, *launch ? "view-mpi" : "view");
+    expectCleanRun(r);
+    const nlohmann::json j = lastJson(r.out);
+    EXPECT_EQ(j["field"], "density");
+    EXPECT_EQ(j["time"], 1);
+    EXPECT_EQ(j["range_steps_read"], 1 + 3);  // pressure's step, then density's
+    EXPECT_NEAR(j["range"][0].get<double>(), density["range"][0].get<double>(), 1e-5);
+    EXPECT_NEAR(j["range"][1].get<double>(), density["range"][1].get<double>(), 1e-5);
+  }
 }
 
 // A new field's colour range is read over all its steps before its first frame; a close that

@@ -9,10 +9,21 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "common/timer.h"
+#include "io/mesh_io.h"
 #include "render/frame_defaults.h"
 
 namespace sm::view {
 namespace {
+
+std::vector<std::string> splitLines(const std::string& joined) {
+  std::vector<std::string> names;
+  for (size_t start = 0; start <= joined.size();) {
+    size_t end = std::min(joined.find('\n', start), joined.size());
+    names.push_back(joined.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
 
 // Rank 0's list, on every rank: a rank without clusters may have read no fields at all.
 std::vector<std::string> agreedFieldNames(const mesh::UnstructuredMesh& m, const std::string& first,
@@ -23,14 +34,7 @@ std::vector<std::string> agreedFieldNames(const mesh::UnstructuredMesh& m, const
     for (const auto& f : m.fields)
       if (f.name != first) joined += '\n' + f.name;
   }
-  joined = app::broadcastString(coll, std::move(joined));
-  std::vector<std::string> names;
-  for (size_t start = 0; start <= joined.size();) {
-    size_t end = std::min(joined.find('\n', start), joined.size());
-    names.push_back(joined.substr(start, end - start));
-    start = end + 1;
-  }
-  return names;
+  return splitLines(app::broadcastString(coll, std::move(joined)));
 }
 
 std::vector<std::string> colormapChoices(const std::string& first) {
@@ -38,6 +42,34 @@ std::vector<std::string> colormapChoices(const std::string& first) {
   for (const auto& n : scene::builtinColormapNames())
     if (n != first) all.push_back(n);
   return all;
+}
+
+// Names the file's cell data among the fields to read, after its point fields, where each step is
+// read when shown (app::streamsCellData): a solver's cell-centred output (Fluent, STAR-CCM+) is
+// then browsed like point data. Where cell data would be loaded whole (every step of every array
+// in memory, e.g. one .vtu split among ranks), only --field names it. A name that is also point
+// data (foamToVTK writes both) stays the point data. Rank 0 reads the headers for every rank.
+void withCellData(const std::string& path, app::ShareOptions& share, app::Collectives& coll) {
+  std::string joined;
+  if (coll.rank() == 0 && app::streamsCellData(path, share, coll.size())) {
+    std::vector<std::string> cells = io::listCellData(path, share.read);
+    // The point fields of the first piece alone: whether the pieces agree is the load's to say
+    // (on several ranks, naming the ranks and their pieces).
+    io::ReadOptions first = share.read;
+    first.pieces = {0};
+    std::vector<std::string> names;
+    if (!cells.empty())
+      for (const io::FieldStepCount& f : io::listFieldSteps(path, first)) names.push_back(f.name);
+    const size_t points = names.size();
+    for (std::string& c : cells)
+      if (std::find(names.begin(), names.end(), c) == names.end()) names.push_back(std::move(c));
+    for (size_t i = 0; points < names.size() && i < names.size(); ++i)
+      joined += (i ? "\n" : "") + names[i];
+  }
+  joined = app::broadcastString(coll, std::move(joined));
+  if (joined.empty()) return;
+  share.read.fields = splitLines(joined);
+  share.cellData = true;
 }
 
 int wrap(int value, uint64_t count) {
@@ -61,8 +93,9 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   app::checkImageSize(job);
   const int firstStep = parseViewStep(job.time);
   Timer load;
-  // The viewer cycles through every point field as a file holds it (vectors as magnitudes). A
-  // component ("v[1]") or cell data is a field only when named: then it is the one field shown.
+  // The viewer cycles through every point field as a file holds it (vectors as magnitudes), then
+  // its cell data where that is streamed (withCellData). A component ("v[1]") or cell data named
+  // by --field is the one field shown.
   app::ShareOptions share = job.share;
   // Steps are read from the file when shown (as `render --time all` reads them), so that a long
   // series holds one step per field in memory, not every step of every field.
@@ -73,6 +106,7 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
     share.cellData = app::fieldsAreCellData(job.mesh, named, coll);
     if (job.field.back() == ']' || *share.cellData) share.read = named;
   }
+  if (share.read.fields.empty()) withCellData(job.mesh, share, coll);
   share_ = app::loadRankShare(job.mesh, share, coll);
   source_ = std::make_unique<app::StepSource>(job.mesh, share_, coll);  // before preparation
   loadSeconds_ = load.seconds();
