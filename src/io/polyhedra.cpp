@@ -114,7 +114,7 @@ void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, 
   }
   // Every face belongs to a polyhedron, so the faces are as many as the largest id says.
   const std::vector<uint64_t> faceEnds = endOffsets(
-      toInt64(doc.decode(need("face_offsets"), uint64_t(lastFace + 1), "face_offsets", 1), src_,
+      toInt64(doc.decode(need("face_offsets"), uint64_t(lastFace) + 1, "face_offsets", 1), src_,
               "face_offsets"),
       src_, "face_offsets");
   faceIds_ = toInt64(doc.decode(need("face_connectivity"), faceEnds.empty() ? 0 : faceEnds.back(),
@@ -131,11 +131,17 @@ void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, 
   layout_ = Layout::FaceArrays;
 }
 
-mesh::PolyhedronFaces VtuPolyhedra::faces(uint64_t c, uint64_t fileCell, uint64_t numPoints,
-                                          uint64_t firstPoint) const {
+std::optional<mesh::PolyhedronFaces> VtuPolyhedra::faces(uint64_t c, uint64_t fileCell,
+                                                         uint64_t numPoints,
+                                                         uint64_t firstPoint) const {
   if (layout_ == Layout::Stream)
     return facesFromStream(std::span(stream_).subspan(begin_[c], end_[c] - begin_[c]), src_,
                            fileCell, numPoints, firstPoint);
+  if (end_[c] - begin_[c] > mesh::kMaxPolyhedronFaces) return std::nullopt;
+  for (uint64_t i = begin_[c]; i < end_[c]; ++i) {
+    const uint64_t f = uint64_t(cellFaces_[i]);
+    if (faceBegin_[f + 1] - faceBegin_[f] > mesh::kMaxFacePoints) return std::nullopt;
+  }
   // The same checks through the stream form: [faces, n0, ids..., ...].
   std::vector<int64_t> stream{int64_t(end_[c] - begin_[c])};
   for (uint64_t i = begin_[c]; i < end_[c]; ++i) {

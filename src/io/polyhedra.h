@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,9 +31,12 @@ class VtuPolyhedra {
   VtuPolyhedra(const VtuDocument& doc, pugi::xml_node cells, std::span<const int64_t> types);
   // False when the piece has polyhedra but no faces for them (they are skipped).
   bool hasFaces() const { return layout_ != Layout::None; }
-  // The faces of cell c of the piece (a polyhedron), its points numbered as in the whole file.
-  mesh::PolyhedronFaces faces(uint64_t c, uint64_t fileCell, uint64_t numPoints,
-                              uint64_t firstPoint) const;
+  // The faces of cell c of the piece (a polyhedron), its points numbered as in the whole file;
+  // none when it lists more faces, or a face of more points, than a split takes
+  // (mesh::kMaxPolyhedronFaces, kMaxFacePoints): face arrays can list one face many times, so a
+  // small file could otherwise ask for a stream of any size.
+  std::optional<mesh::PolyhedronFaces> faces(uint64_t c, uint64_t fileCell, uint64_t numPoints,
+                                             uint64_t firstPoint) const;
 
  private:
   enum class Layout { None, Stream, FaceArrays };

@@ -152,10 +152,12 @@ class VtuReader {
         ids[i] = static_cast<int64_t>(v) + static_cast<int64_t>(p.firstPoint);
       }
       const int vtkType = static_cast<int>(std::clamp<int64_t>(types[c], -1, 1 << 20));
-      if (vtkType == kPolyhedron && polyhedra.hasFaces())
-        builder_.addPolyhedron(polyhedra.faces(c, fileCell, p.numPoints, p.firstPoint), fileCell,
-                               cluster);
-      else
+      if (vtkType == kPolyhedron && polyhedra.hasFaces()) {
+        if (auto faces = polyhedra.faces(c, fileCell, p.numPoints, p.firstPoint))
+          builder_.addPolyhedron(*faces, fileCell, cluster);
+        else
+          builder_.skipPolyhedron(fileCell, mesh::PolyhedronSplit::TooLarge);
+      } else
         builder_.addVtkCell(vtkType, {ids, static_cast<size_t>(n)}, fileCell, cluster);
       begin = end;
     }

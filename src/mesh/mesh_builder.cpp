@@ -215,10 +215,7 @@ void MeshBuilder::addPolyhedron(const PolyhedronFaces& faces, uint64_t fileCell,
   polyTets_.clear();
   const PolyhedronSplit split = tetrahedralize(faces, mesh_.points, polyTets_);
   if (split != PolyhedronSplit::Ok) {
-    if (mesh_.skipped.polyhedra++ == 0) {
-      firstUnsplitPolyhedron_ = fileCell;
-      firstUnsplitReason_ = split;
-    }
+    skipPolyhedron(fileCell, split);
     return;
   }
   ++mesh_.skipped.polyhedraSplit;
@@ -226,6 +223,16 @@ void MeshBuilder::addPolyhedron(const PolyhedronFaces& faces, uint64_t fileCell,
   for (const auto& t : polyTets_) {
     const int64_t ids[4] = {t[0], t[1], t[2], t[3]};
     addCell(CellType::Tet, ids, fileCell, cluster);
+  }
+}
+
+void MeshBuilder::skipPolyhedron(uint64_t fileCell, PolyhedronSplit why) {
+  ++mesh_.skipped.polyhedra;
+  // The first with a reason, even after polyhedra skipped for having no faces (the pieces of a
+  // .pvtu differ there), so that the warning gives one.
+  if (firstUnsplitReason_ == PolyhedronSplit::Ok) {
+    firstUnsplitPolyhedron_ = fileCell;
+    firstUnsplitReason_ = why;
   }
 }
 

@@ -32,6 +32,8 @@ class MeshBuilder {
   // that cannot be split is counted and skipped. Throws sm::FileError for ids out of range, faces
   // of fewer than 3 points and a point twice in one face.
   void addPolyhedron(const PolyhedronFaces& faces, uint64_t fileCell, int32_t cluster = 0);
+  // A polyhedron skipped for `why` (its faces not even looked at: too large to copy).
+  void skipPolyhedron(uint64_t fileCell, PolyhedronSplit why);
   // A linear cell in VTK vertex order (used by formats that are not VTK's, after their conversion).
   void addCell(CellType type, std::span<const int64_t> ids, uint64_t fileCell, int32_t cluster = 0);
 

@@ -168,37 +168,57 @@ PolyhedronSplit tetrahedralize(const PolyhedronFaces& faces, const std::vector<g
   const double size = glm::length(hi - lo), flat = kFlatTet * size * size * size;
   // In `before` order, so that the first point is the apex wherever it can be (header comment).
   if (verts.size() > kMaxApexTries) verts.resize(kMaxApexTries);
-  for (uint32_t apex : verts) {
-    const glm::dvec3& q = points[apex];
+  // The cone over boundary triangle t from the apex: +1 or -1 by its orientation; 0 for a
+  // triangle holding the apex; kFlatOnApexFace for one of a face on the apex that is flat with it
+  // (no tetrahedron there: the cones over the other faces end on the apex's fan instead, the
+  // face's own cut only if that is a fan from the apex); kFlatElsewhere where the apex cannot be
+  // used (flat with a face it is not on).
+  constexpr int kFlatOnApexFace = 3, kFlatElsewhere = 2;
+  auto cone = [&](uint32_t apex, size_t t, bool apexFace) {
+    const auto& r = tris[t];
+    if (apexFace && (r[0] == apex || r[1] == apex || r[2] == apex)) return 0;
+    const glm::dvec3& a = points[r[0]];
+    const double v = glm::dot(glm::cross(points[r[1]] - a, points[r[2]] - a), points[apex] - a);
+    return v > flat ? 1 : v < -flat ? -1 : apexFace ? kFlatOnApexFace : kFlatElsewhere;
+  };
+  auto onFace = [&](size_t f, uint32_t apex) {
+    std::span<const uint32_t> c = faces.face(f);
+    return std::find(c.begin(), c.end(), apex) != c.end();
+  };
+  // The sign of every cone from `apex`, 0 if it cannot be the apex. Every face keeps its own cut
+  // (triangulateFace), so the cells on a face agree: a warped face's triangles away from the apex
+  // are cones of their own. Only where a face on the apex is flat with it and not a fan from it
+  // (exact: the first pass refuses that) do the two sides cut a plane differently.
+  auto signFrom = [&](uint32_t apex, bool exact) {
     int sign = 0;
-    bool ok = true;
-    size_t begin = 0;
-    for (size_t f = 0; f < faces.numFaces() && ok; begin = faceEnd[f], ++f) {
-      std::span<const uint32_t> c = faces.face(f);
-      if (std::find(c.begin(), c.end(), apex) != c.end()) continue;
-      for (size_t t = begin; t < faceEnd[f] && ok; ++t) {
-        const glm::dvec3& a = points[tris[t][0]];
-        const double v =
-            glm::dot(glm::cross(points[tris[t][1]] - a, points[tris[t][2]] - a), q - a);
-        const int s = v > flat ? 1 : v < -flat ? -1 : 0;
-        ok = s != 0 && (sign == 0 || s == sign);
+    for (size_t f = 0, begin = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
+      const bool apexFace = onFace(f, apex);
+      for (size_t t = begin; t < faceEnd[f]; ++t) {
+        const int s = cone(apex, t, apexFace);
+        if (s == 0 || (s == kFlatOnApexFace && !exact)) continue;
+        if (s == kFlatOnApexFace || s == kFlatElsewhere || (sign != 0 && s != sign)) return 0;
         sign = s;
       }
     }
-    if (!ok || sign == 0) continue;
-    begin = 0;
-    for (size_t f = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
-      std::span<const uint32_t> c = faces.face(f);
-      if (std::find(c.begin(), c.end(), apex) != c.end()) continue;
-      for (size_t t = begin; t < faceEnd[f]; ++t) {
-        const auto& r = tris[t];
-        // VTK's positive order: the base turns towards the apex.
-        tets.push_back(sign > 0 ? std::array<uint32_t, 4>{r[0], r[1], r[2], apex}
-                                : std::array<uint32_t, 4>{r[0], r[2], r[1], apex});
+    return sign;
+  };
+  for (bool exact : {true, false})
+    for (uint32_t apex : verts) {
+      const int sign = signFrom(apex, exact);
+      if (sign == 0) continue;
+      for (size_t f = 0, begin = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
+        const bool apexFace = onFace(f, apex);
+        for (size_t t = begin; t < faceEnd[f]; ++t) {
+          const int s = cone(apex, t, apexFace);
+          if (s != 1 && s != -1) continue;
+          const auto& r = tris[t];
+          // VTK's positive order: the base turns towards the apex.
+          tets.push_back(sign > 0 ? std::array<uint32_t, 4>{r[0], r[1], r[2], apex}
+                                  : std::array<uint32_t, 4>{r[0], r[2], r[1], apex});
+        }
       }
+      return PolyhedronSplit::Ok;
     }
-    return PolyhedronSplit::Ok;
-  }
   return PolyhedronSplit::NotStarShaped;
 }
 

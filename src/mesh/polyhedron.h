@@ -5,15 +5,18 @@
 // The split has to be conforming, or the element walk would stop at every face between two
 // polyhedra: two cells that share a face must cut it into the same triangles. So a face's
 // triangles depend only on the face (its points and their positions), never on the cell asking
-// (triangulateFace), and each cell takes as apex the first of its vertices that sees every face
-// it is not on from inside. "First" orders points by position (x, then y, then z; ties by id),
-// not by id, so that the pieces of a partitioned file, which number a shared point differently,
-// agree. Faces on the apex are covered by the apex's fan; when the apex is the cell's first point
-// it is also the first of each of its faces, and that fan is the face's own triangulation wherever
-// a fan from the face's first point is valid, so cells meet in the same triangles there too.
-// Where a cell needs a later apex, or a face needs ear clipping, the two sides may cut a face
-// differently: the renderer then meets that face as two touching shells, which its traversal
-// handles (DESIGN.md), at the cost of a segment per ray through it.
+// (triangulateFace), and the cell is the union of the cones from one of its vertices, the apex,
+// over those triangles. "First" orders points by position (x, then y, then z; ties by id), not
+// by id, so that the pieces of a partitioned file, which number a shared point differently,
+// agree. A triangle holding the apex has no cone, nor has one flat with it (a planar face on the
+// apex); on a warped face on the apex, a triangle away from it is a thin cone of its own, so the
+// cell ends on the face's own cut and its neighbour meets it there, with no gap or overlap. The
+// apex is the first vertex that sees every cone from inside and leaves no flat triangle that is
+// not a fan from it (the first vertex of a convex cell, which begins each of its faces); failing
+// that, the first that sees every cone, the flat triangles dropped: a planar face on it then ends
+// the cell on the apex's fan, which may differ from the neighbour's cut of the same plane. The
+// renderer meets such a face as two touching shells, which its traversal handles (DESIGN.md), at
+// the cost of a segment per ray through it.
 #pragma once
 
 #include <array>
@@ -60,7 +63,8 @@ bool triangulateFace(std::span<const uint32_t> cycle, const std::vector<glm::dve
                      std::vector<std::array<uint32_t, 3>>& tris);
 
 // The tetrahedra of polyhedron `faces`, in VTK vertex order with positive volume, appended to
-// `tets` (left as it was unless Ok). Faces may be oriented all outward or all inward.
+// `tets` (left as it was unless Ok). Faces may be oriented all outward or all inward. At most
+// kMaxApexTries vertices are tried as the apex, twice (header comment).
 PolyhedronSplit tetrahedralize(const PolyhedronFaces& faces, const std::vector<glm::dvec3>& points,
                                std::vector<std::array<uint32_t, 4>>& tets);
 

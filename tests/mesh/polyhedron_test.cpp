@@ -324,5 +324,132 @@ TEST(Polyhedron, PiecesNumberingSharedPointsDifferentlyStillConform) {
   EXPECT_EQ(once, size_t(6 * n * n * 2));  // the outside's squares, two triangles each
 }
 
+// Each face of `cell` turned outward (Newell normal away from the cell's centre): the cells below
+// are convex enough for that.
+PolyhedronFaces outward(std::vector<std::vector<uint32_t>> cell, const std::vector<glm::dvec3>& p) {
+  glm::dvec3 centre(0.0);
+  size_t n = 0;
+  for (const auto& f : cell)
+    for (uint32_t v : f) centre += p[v], ++n;
+  centre /= double(n);
+  for (auto& f : cell) {
+    glm::dvec3 normal(0.0), mid(0.0);
+    for (size_t i = 0; i < f.size(); ++i) {
+      normal += glm::cross(p[f[i]], p[f[(i + 1) % f.size()]]);
+      mid += p[f[i]];
+    }
+    if (glm::dot(normal, mid / double(f.size()) - centre) < 0.0) std::reverse(f.begin(), f.end());
+  }
+  return facesOf(cell);
+}
+
+// Triangles of the tetrahedra, by their sorted points, with how many tetrahedra have each.
+std::map<std::array<uint32_t, 3>, int> triangleUses(const Tets& tets) {
+  std::map<std::array<uint32_t, 3>, int> uses;
+  for (const auto& t : tets)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<uint32_t, 3> f;
+      for (int v = 0, o = 0; v < 4; ++v)
+        if (v != skip) f[size_t(o++)] = t[size_t(v)];
+      std::sort(f.begin(), f.end());
+      ++uses[f];
+    }
+  return uses;
+}
+
+// A warped face between two cells where one of them cannot take the face's first point as its
+// apex: cell C (x from 0 to 1) has its bottom cut in two by hanging points in the middle of two
+// edges (octree refinement), so the corner p = (0,0,0) lies in the plane of the bottom's far half
+// and another vertex must be the apex; the face F at x = 0 is warped (its corner (0,1,0) moved to
+// x = 0.05). Both cells must still cut F the same way, or the warp leaves a gap or an overlap: F's
+// triangles are faces of a tetrahedron on each side. (They were not when a later apex covered
+// the faces it is on by its own fan.) A face whose fan has a sliver triangle, which its own cut
+// avoids, likewise.
+TEST(Polyhedron, AWarpedFaceIsCutAlikeWhateverTheApex) {
+  const std::vector<glm::dvec3> points = {
+      {0, 0, 0}, {0, 0, 1},   {0, 1, 1},   {0.05, 1, 0}, {1, 0, 0},  {1, 1, 0},  {1, 0, 1},
+      {1, 1, 1}, {0.5, 0, 0}, {0.5, 1, 0}, {-1, 0, 0},   {-1, 1, 0}, {-1, 0, 1}, {-1, 1, 1}};
+  enum : uint32_t { p, t0, t3, c, a, b, t1, t2, m1, m2, n0, n1, n2, n3 };
+  const PolyhedronFaces cellC = outward({{p, c, m2, m1},
+                                         {m1, m2, b, a},
+                                         {p, m1, a, t1, t0},
+                                         {c, t3, t2, b, m2},
+                                         {t0, t1, t2, t3},
+                                         {a, b, t2, t1},
+                                         {p, t0, t3, c}},
+                                        points);
+  const PolyhedronFaces cellN = outward({{p, t0, t3, c},
+                                         {n0, n2, n3, n1},
+                                         {n0, p, c, n1},
+                                         {n2, n3, t3, t0},
+                                         {n0, n2, t0, p},
+                                         {n1, c, t3, n3}},
+                                        points);
+  for (bool flip : {false, true}) {
+    SCOPED_TRACE(flip ? "inward faces" : "outward faces");
+    Tets tc, tn;
+    ASSERT_EQ(tetrahedralize(flip ? reversed(cellC) : cellC, points, tc), PolyhedronSplit::Ok);
+    ASSERT_EQ(tetrahedralize(flip ? reversed(cellN) : cellN, points, tn), PolyhedronSplit::Ok);
+    EXPECT_TRUE(std::none_of(tc.begin(), tc.end(), [](const auto& t) { return t[3] == p; }))
+        << "the case needs an apex other than the face's first point";
+    Tets both = tc;
+    both.insert(both.end(), tn.begin(), tn.end());
+    // C is the unit cube with a corner moved by 0.05 along x, N the unit cube with one moved the
+    // other way: their volumes sum to 2.
+    EXPECT_NEAR(checkedVolume(both, points), 2.0, 1e-12);
+    const std::set<uint32_t> onF = {p, t0, t3, c};
+    int faceTriangles = 0;
+    for (const auto& [f, count] : triangleUses(both)) {
+      EXPECT_LE(count, 2);
+      if (onF.count(f[0]) && onF.count(f[1]) && onF.count(f[2])) {
+        ++faceTriangles;
+        EXPECT_EQ(count, 2) << "F cut differently by the two cells: " << f[0] << " " << f[1] << " "
+                            << f[2];
+      }
+    }
+    EXPECT_GE(faceTriangles, 2);  // F's two, and the faces of a sliver on the warp
+  }
+}
+
+// A warped quad whose fan from its first point has a sliver in the face's plane (a point 1e-10 off
+// the line of its neighbours) is ear-clipped as a face; the prisms on both sides of it, one with
+// that point as its apex, must still cut it alike, or the warp leaves a gap or an overlap. (Flat,
+// the two cuts would cover the same plane: touching shells, which traversal handles.)
+TEST(Polyhedron, AWarpedFaceWithASliverFanIsCutAlikeOnBothSides) {
+  for (double warp : {0.01, -0.01}) {
+    SCOPED_TRACE(warp);
+    std::vector<glm::dvec3> points = {{0, 0, 0}, {1, 0, 0}, {2, 1e-10, warp}, {0, 1, 0}};
+    for (double z : {1.0, -1.0})
+      for (int i = 0; i < 4; ++i)
+        points.push_back(points[size_t(i)] * glm::dvec3(1, 1, 0) + glm::dvec3(0, 0, z));
+    Tets both;
+    for (uint32_t o : {4u, 8u}) {  // the prism above F, then the one below
+      const PolyhedronFaces prism = outward({{0, 1, 2, 3},
+                                             {o, o + 1, o + 2, o + 3},
+                                             {0, 1, o + 1, o},
+                                             {1, 2, o + 2, o + 1},
+                                             {2, 3, o + 3, o + 2},
+                                             {3, 0, o, o + 3}},
+                                            points);
+      ASSERT_EQ(tetrahedralize(prism, points, both), PolyhedronSplit::Ok);
+    }
+    // Two unit prisms (F's area is 1 + 5e-11; what the warp takes from one it gives the other),
+    // every tetrahedron positive, the slivers along the nearly flat sides too.
+    double volume = 0.0;
+    for (const auto& t : both) {
+      const double v = signedVolume(CellType::Tet, t, points);
+      EXPECT_GT(v, 0.0);
+      volume += v;
+    }
+    EXPECT_NEAR(volume, 2.0, 1e-9);
+    const std::set<uint32_t> onF = {0, 1, 2, 3};
+    for (const auto& [f, count] : triangleUses(both)) {
+      if (onF.count(f[0]) && onF.count(f[1]) && onF.count(f[2])) {
+        EXPECT_EQ(count, 2) << "F cut differently: " << f[0] << " " << f[1] << " " << f[2];
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sm::mesh

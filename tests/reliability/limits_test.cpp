@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -119,6 +120,45 @@ TEST(Limits, PvtuPieceDeclaringAbsurdCounts) {
   EXPECT_NO_THROW(counts = io::pieceCellCounts((dir / "weld.pvtu").string()));
   ASSERT_EQ(counts.size(), 3u);
   EXPECT_EQ(counts[1], uint64_t(1) << 40);
+}
+
+// VTK 9.4's face arrays list faces by index, so a small file can have a polyhedron name one face
+// of 256 points 200 000 times: copied out as a face stream, 400 MB. Such a cell has more faces
+// than any split takes (mesh::kMaxPolyhedronFaces) and is skipped as too large before any copy.
+TEST(Limits, PolyhedronListingOneFaceManyTimes) {
+  std::string points, ring;
+  for (int i = 0; i < 256; ++i) {
+    points +=
+        std::to_string(std::cos(i * 0.0245)) + " " + std::to_string(std::sin(i * 0.0245)) + " 0 ";
+    ring += std::to_string(i) + " ";
+  }
+  points += "0 0 1 1 0 1 0 1 1 0 0 2";
+  std::string many;
+  for (int i = 0; i < 200000; ++i) many += "0 ";
+  auto array = [](const char* name, const std::string& values) {
+    return std::string("<DataArray type=\"Int64\" Name=\"") + name + "\" format=\"ascii\">" +
+           values + "</DataArray>";
+  };
+  const std::string text =
+      "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\"><UnstructuredGrid><Piece "
+      "NumberOfPoints=\"260\" NumberOfCells=\"2\"><Points><DataArray type=\"Float64\" "
+      "NumberOfComponents=\"3\" format=\"ascii\">" +
+      points + "</DataArray></Points><Cells>" + array("connectivity", ring + "256 257 258 259") +
+      array("offsets", "256 260") +
+      "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">42 10</DataArray>" +
+      array("face_connectivity", ring) + array("face_offsets", "256") +
+      array("polyhedron_to_faces", many) + array("polyhedron_offsets", "200000 200000") +
+      "</Cells></Piece></UnstructuredGrid></VTKFile>";
+  Guard guard;
+  mesh::UnstructuredMesh m;
+  try {
+    m = io::readMeshFromMemory({reinterpret_cast<const uint8_t*>(text.data()), text.size()},
+                               "many.vtu");
+  } catch (const std::bad_alloc&) {
+    FAIL() << "allocation beyond the limit (the face list was copied out)";
+  }
+  EXPECT_EQ(m.skipped.polyhedra, 1u);
+  EXPECT_EQ(m.numCells(), 1u);  // the tetrahedron
 }
 
 // A cache whose checksum is right but whose sections claim more than it holds: a hostile or
