@@ -20,6 +20,9 @@ std::string expected(size_t count, char sep) {
 std::vector<double> numbers(const std::string& option, const std::string& value, char sep,
                             size_t count) {
   std::vector<double> out;
+  // getline drops an empty last item: "64x64x" would read as two numbers.
+  if (!value.empty() && value.back() == sep)
+    throw Error(option, ": '", value, "' is not ", expected(count, sep));
   std::stringstream ss(value);
   std::string item;
   while (std::getline(ss, item, sep)) {
@@ -83,6 +86,8 @@ scene::ClipPlane parseClipPlane(const std::string& option, const std::string& va
 std::vector<scene::OpacityPoint> parseOpacityPoints(const std::string& option,
                                                     const std::string& value) {
   std::vector<scene::OpacityPoint> points;
+  if (!value.empty() && value.back() == ',')  // which getline would drop
+    throw Error(option, ": '", value, "' ends in ',': VALUE:OPACITY points separated by ','");
   std::stringstream ss(value);
   std::string item;
   while (std::getline(ss, item, ',')) {

@@ -23,6 +23,11 @@ expect() { expect_status 1 "$@"; }  # bad input: exit status 1
 usage() { expect_status 2 "$@"; }   # a command line the option parser refuses: exit status 2
 expect "missing.vtu" "$sm" render missing.vtu --out a.png
 expect "--size" "$sm" render ok.pvtu --size 0x10 --out a.png
+# A separator left at the end is not a missing number read as none.
+expect "--size: '64x64x'" "$sm" render ok.pvtu --size 64x64x --out a.png
+expect "--range: '1,3,'" "$sm" render ok.pvtu --range 1,3, --out a.png
+expect "--eye: '3,3,3,'" "$sm" render ok.pvtu --eye 3,3,3, --out a.png
+expect "--opacity: '0:0,1:1,' ends in ','" "$sm" render ok.pvtu --opacity 0:0,1:1, --out a.png
 expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
 expect "ok_0.vtu: has no point array 'nope' (point arrays: linear, shock, vortex, density)" "$sm" render ok.pvtu --field nope --out a.png
 expect "--out" "$sm" render ok.pvtu --out a.jpg
