@@ -66,7 +66,7 @@ VtuPolyhedra::VtuPolyhedra(const VtuDocument& doc, pugi::xml_node cells,
   if (findDataArray(cells, "faces") || findDataArray(cells, "faceoffsets"))
     readStream(doc, cells, types);
   else if (findDataArray(cells, "face_connectivity") || findDataArray(cells, "polyhedron_offsets"))
-    readFaceArrays(doc, cells, types.size());
+    readFaceArrays(doc, cells, types);
 }
 
 void VtuPolyhedra::readStream(const VtuDocument& doc, pugi::xml_node cells,
@@ -92,7 +92,9 @@ void VtuPolyhedra::readStream(const VtuDocument& doc, pugi::xml_node cells,
   layout_ = Layout::Stream;
 }
 
-void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, uint64_t numCells) {
+void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells,
+                                  std::span<const int64_t> types) {
+  const uint64_t numCells = types.size();
   auto need = [&](const char* name) {
     pugi::xml_node a = findDataArray(cells, name);
     if (!a) throw FileError(src_, "has polyhedra but no '", name, "' array");
@@ -127,6 +129,9 @@ void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, 
   for (uint64_t c = 0; c < numCells; ++c) {
     begin_[c] = c == 0 ? 0 : cellEnds[c - 1];
     end_[c] = cellEnds[c];
+    if (types[c] == kPolyhedron && end_[c] == begin_[c])
+      throw FileError(src_, "polyhedron_offsets: polyhedron cell ", c, " has no faces (its entry ",
+                      end_[c], " is the previous cell's)");
   }
   layout_ = Layout::FaceArrays;
 }

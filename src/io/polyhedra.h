@@ -41,7 +41,7 @@ class VtuPolyhedra {
  private:
   enum class Layout { None, Stream, FaceArrays };
   void readStream(const VtuDocument& doc, pugi::xml_node cells, std::span<const int64_t> types);
-  void readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, uint64_t numCells);
+  void readFaceArrays(const VtuDocument& doc, pugi::xml_node cells, std::span<const int64_t> types);
 
   const std::string& src_;
   Layout layout_ = Layout::None;

@@ -206,6 +206,8 @@ TEST(Polyhedra, DamagedFacesAreOneLineErrors) {
        vtuWith("<DataArray type=\"Int64\" Name=\"faces\" format=\"ascii\">1</DataArray>"),
        "has polyhedra with a 'faces' array but no 'faceoffsets' array"},
       {"offsets.vtu", vtuWith(faceArrays("6 5")), "polyhedron_offsets: entry 1 (5) is smaller"},
+      {"no_faces.vtu", vtuWith(faceArrays("0 6")),
+       "polyhedron_offsets: polyhedron cell 0 has no faces"},
       {"no_to_faces.vtu",
        vtuWith("<DataArray type=\"Int64\" Name=\"polyhedron_offsets\" format=\"ascii\">6 "
                "6</DataArray>"),
