@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "app/cell_data_share.h"
 #include "app/comm_collectives.h"
@@ -19,6 +20,7 @@
 #include "gen/generate.h"
 #include "io/weld.h"
 #include "partition/partition.h"
+#include "support/test_meshes.h"
 #include "support/test_support.h"
 
 namespace sm::app {
@@ -26,13 +28,6 @@ namespace {
 
 using mesh::CellField;
 using mesh::UnstructuredMesh;
-
-glm::dvec3 centroid(const UnstructuredMesh& m, int t, size_t e) {
-  const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
-  glm::dvec3 c(0.0);
-  for (uint32_t k = 0; k < nv; ++k) c += m.points[m.cells[t][e * nv + k]];
-  return c / double(nv);
-}
 
 size_t cellsOf(const UnstructuredMesh& m, int t) {
   return m.cells[t].size() / mesh::numVerts(mesh::kAllCellTypes[t]);
@@ -46,7 +41,7 @@ void addCellFields(UnstructuredMesh& m, int steps) {
       auto& perType = cf.steps.emplace_back();
       for (int t = 0; t < mesh::kNumCellTypes; ++t)
         for (size_t e = 0; e < cellsOf(m, t); ++e) {
-          const glm::dvec3 c = centroid(m, t, e);
+          const glm::dvec3 c = test::cellCentroid(m, t, e);
           perType[t].push_back(float(std::sin(3 * c.x + s) * c.y + (f + 1) * c.z * c.z));
         }
     }
@@ -144,7 +139,7 @@ void expectInterlockedSameAsWhole(gen::CubeSplit split, int parts, int ranks, in
 TEST(BorderExchange, TwoHalvesShareTheirMiddlePlane) {
   UnstructuredMesh whole = gen::cube(gen::CubeSplit::Hex, 4);
   for (size_t e = 0; e < whole.clusters[3].size(); ++e)
-    whole.clusters[3][e] = centroid(whole, 3, e).x < 0.5 ? 0 : 1;
+    whole.clusters[3][e] = test::cellCentroid(whole, 3, e).x < 0.5 ? 0 : 1;
   comp::runLocalRanks(2, [&](comp::Communicator& c) {
     CommCollectives coll(c);
     UnstructuredMesh m = partition::extractClustersWithPointMap(whole, {c.rank()}).mesh;
@@ -188,8 +183,8 @@ TEST(BorderExchange, CopiesOfAPointPairUpAsTheWeldPairsThem) {
   UnstructuredMesh whole = gen::cube(gen::CubeSplit::Hex, 6);
   std::vector<uint32_t> copyOf(whole.numPoints(), ~0u);
   for (size_t e = 0; e < cellsOf(whole, 3); ++e) {
-    whole.clusters[3][e] = std::min(2, int(centroid(whole, 3, e).x * 3));
-    if (centroid(whole, 3, e).z < 0.5) continue;
+    whole.clusters[3][e] = std::min(2, int(test::cellCentroid(whole, 3, e).x * 3));
+    if (test::cellCentroid(whole, 3, e).z < 0.5) continue;
     for (uint32_t k = 0; k < 8; ++k) {
       uint32_t& v = whole.cells[3][e * 8 + k];
       if (whole.points[v].z != 0.5) continue;
@@ -250,10 +245,9 @@ TEST(BorderExchange, ARankWhosePiecesHoldNoCellDataFailsWithTheOthers) {
   expectAllRanksFail(pieces, 2, "rank 1 (piece 1) has no cell data asked for");
 }
 
-// Cell data of polyhedra, streamed (render's and view's way) and read whole: each polyhedron
-// counts once at each of its points however many of its tetrahedra meet there (the two cubes of
-// tests/io/data/polyhedra.vtu share the face x = 1: q there is (1 + 2) / 2).
-TEST(PolyhedraCellData, EachPolyhedronCountsOnceAtAPoint) {
+// Cell data 'q' of `path` on one rank, streamed (render's and view's way) and read whole, against
+// want(point) at every point; the file's three polyhedra split.
+void expectPolyhedraQ(const std::string& path, const std::function<float(glm::dvec3)>& want) {
   for (bool stream : {true, false}) {
     SCOPED_TRACE(stream ? "streamed" : "whole");
     comp::runLocalRanks(1, [&](comp::Communicator& c) {
@@ -261,17 +255,28 @@ TEST(PolyhedraCellData, EachPolyhedronCountsOnceAtAPoint) {
       ShareOptions o;
       o.read.fields = {"q"};
       o.streamSteps = stream;
-      const RankShare s =
-          loadRankShare(std::string(SHELLMARCH_IO_TEST_DATA) + "/polyhedra.vtu", o, coll);
+      const RankShare s = loadRankShare(path, o, coll);
       ASSERT_EQ(s.mesh.fields.size(), 1u);
       EXPECT_EQ(s.mesh.skipped.polyhedraSplit, 3u);
       for (size_t p = 0; p < s.mesh.numPoints(); ++p) {
         const glm::dvec3 x = s.mesh.points[p];
-        const float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
-        EXPECT_EQ(s.mesh.fields[0].steps[0][p], want) << x.x << " " << x.y << " " << x.z;
+        EXPECT_FLOAT_EQ(s.mesh.fields[0].steps[0][p], want(x)) << x.x << " " << x.y << " " << x.z;
       }
     });
   }
+}
+
+// q of tests/io/data/polyhedra.vtu at point x: two cubes (q = 1, 2) sharing the face x = 1, and a
+// hexagonal prism (q = 3) beyond x = 2.5.
+float polyhedraQ(glm::dvec3 x) {
+  return x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
+}
+
+// Cell data of polyhedra, streamed (render's and view's way) and read whole: each polyhedron
+// counts once at each of its points however many of its tetrahedra meet there (the two cubes of
+// tests/io/data/polyhedra.vtu share the face x = 1: q there is (1 + 2) / 2).
+TEST(PolyhedraCellData, EachPolyhedronCountsOnceAtAPoint) {
+  expectPolyhedraQ(std::string(SHELLMARCH_IO_TEST_DATA) + "/polyhedra.vtu", polyhedraQ);
 }
 
 // The same polyhedra as one piece of a .pvtu whose other piece holds a hexahedron (q = 4) on top
@@ -298,26 +303,12 @@ TEST(PolyhedraCellData, APieceWithoutPolyhedraKeepsTheCountRight) {
          "<PCellData><PDataArray type=\"Float32\" Name=\"q\"/></PCellData>"
          "<PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/></PPoints>"
          "<Piece Source=\"poly.vtu\"/><Piece Source=\"hex.vtu\"/></PUnstructuredGrid></VTKFile>\n";
-  for (bool stream : {true, false}) {
-    SCOPED_TRACE(stream ? "streamed" : "whole");
-    comp::runLocalRanks(1, [&](comp::Communicator& c) {
-      CommCollectives coll(c);
-      ShareOptions o;
-      o.read.fields = {"q"};
-      o.streamSteps = stream;
-      const RankShare s = loadRankShare(dir + "/both.pvtu", o, coll);
-      ASSERT_EQ(s.mesh.fields.size(), 1u);
-      EXPECT_EQ(s.mesh.skipped.polyhedraSplit, 3u);
-      for (size_t p = 0; p < s.mesh.numPoints(); ++p) {
-        const glm::dvec3 x = s.mesh.points[p];
-        float want = x.x > 2.5 ? 3.0f : x.x == 1.0 ? 1.5f : x.x < 1.0 ? 1.0f : 2.0f;
-        if (x.z == 2.0) want = 4.0f;
-        if (x.z == 1.0 && x.x == 2.0) want = (2.0f + 4.0f) / 2.0f;
-        if (x.z == 1.0 && x.x == 1.0) want = (1.0f + 2.0f + 4.0f) / 3.0f;
-        EXPECT_FLOAT_EQ(s.mesh.fields[0].steps[0][p], want) << x.x << " " << x.y << " " << x.z;
-      }
-    });
-  }
+  expectPolyhedraQ(dir + "/both.pvtu", [](glm::dvec3 x) {
+    if (x.z == 2.0) return 4.0f;
+    if (x.z == 1.0 && x.x == 2.0) return (2.0f + 4.0f) / 2.0f;
+    if (x.z == 1.0 && x.x == 1.0) return (1.0f + 2.0f + 4.0f) / 3.0f;
+    return polyhedraQ(x);
+  });
 }
 
 }  // namespace

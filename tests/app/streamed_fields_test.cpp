@@ -12,19 +12,13 @@
 #include "compositor/local_communicator.h"
 #include "gen/generate.h"
 #include "io/mesh_io.h"
+#include "support/test_meshes.h"
 #include "support/test_support.h"
 
 namespace sm::app {
 namespace {
 
 using mesh::UnstructuredMesh;
-
-glm::dvec3 centroid(const UnstructuredMesh& m, int t, size_t e) {
-  const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
-  glm::dvec3 c(0.0);
-  for (uint32_t k = 0; k < nv; ++k) c += m.points[m.cells[t][e * nv + k]];
-  return c / double(nv);
-}
 
 // Three pieces dealt by a hash of the element (so that they interlock); point field 'temperature'
 // with 2 steps, cell data 'pressure' with 3 and 'density' with 1, each step its own values.
@@ -45,7 +39,7 @@ UnstructuredMesh meshWithFields() {
       auto& perType = cf.steps.emplace_back();
       for (int t = 0; t < mesh::kNumCellTypes; ++t)
         for (size_t e = 0; e < m.clusters[t].size(); ++e) {
-          const glm::dvec3 c = centroid(m, t, e);
+          const glm::dvec3 c = test::cellCentroid(m, t, e);
           perType[t].push_back(float(std::sin(3 * c.x + s) * c.y + (f + 1) * (s + 1) * c.z * c.z));
         }
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <random>
@@ -54,6 +55,22 @@ std::set<std::array<uint32_t, 4>> asSets(Tets tets) {
     out.insert(t);
   }
   return out;
+}
+
+// Triangles of the tetrahedra, by their sorted points (as `key` names them: the identity unless
+// given), with how many tetrahedra have each.
+std::map<std::array<uint32_t, 3>, int> triangleUses(
+    const Tets& tets, const std::function<uint32_t(uint32_t)>& key = {}) {
+  std::map<std::array<uint32_t, 3>, int> uses;
+  for (const auto& t : tets)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<uint32_t, 3> f;
+      for (int v = 0, o = 0; v < 4; ++v)
+        if (v != skip) f[size_t(o++)] = key ? key(t[size_t(v)]) : t[size_t(v)];
+      std::sort(f.begin(), f.end());
+      ++uses[f];
+    }
+  return uses;
 }
 
 // The unit cube's corners in VTK hexahedron order, faces outward.
@@ -259,16 +276,7 @@ TEST(Polyhedron, NeighboursCutSharedFacesTheSameWay) {
         ASSERT_EQ(tetrahedralize(facesOf(faces), points, all), PolyhedronSplit::Ok);
       }
   EXPECT_NEAR(checkedVolume(all, points), n * n * n, 1e-9);
-  std::map<std::array<uint32_t, 3>, int> uses;
-  for (const auto& t : all)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<uint32_t, 3> f;
-      for (int v = 0, o = 0; v < 4; ++v)
-        if (v != skip) f[size_t(o++)] = t[size_t(v)];
-      std::sort(f.begin(), f.end());
-      ++uses[f];
-    }
-  for (const auto& [f, count] : uses) {
+  for (const auto& [f, count] : triangleUses(all)) {
     EXPECT_LE(count, 2);
     if (count == 1) {  // on the outside: all three points on one side of the block
       bool outside = false;
@@ -307,17 +315,8 @@ TEST(Polyhedron, PiecesNumberingSharedPointsDifferentlyStillConform) {
     const glm::dvec3 p = points[v];
     return uint32_t((p.z * (n + 1) + p.y) * (n + 1) + p.x);
   };
-  std::map<std::array<uint32_t, 3>, int> uses;
-  for (const auto& t : all)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<uint32_t, 3> f;
-      for (int v = 0, o = 0; v < 4; ++v)
-        if (v != skip) f[size_t(o++)] = key(t[size_t(v)]);
-      std::sort(f.begin(), f.end());
-      ++uses[f];
-    }
   size_t once = 0;
-  for (const auto& [f, count] : uses) {
+  for (const auto& [f, count] : triangleUses(all, key)) {
     EXPECT_LE(count, 2);
     once += count == 1 ? 1 : 0;
   }
@@ -341,20 +340,6 @@ PolyhedronFaces outward(std::vector<std::vector<uint32_t>> cell, const std::vect
     if (glm::dot(normal, mid / double(f.size()) - centre) < 0.0) std::reverse(f.begin(), f.end());
   }
   return facesOf(cell);
-}
-
-// Triangles of the tetrahedra, by their sorted points, with how many tetrahedra have each.
-std::map<std::array<uint32_t, 3>, int> triangleUses(const Tets& tets) {
-  std::map<std::array<uint32_t, 3>, int> uses;
-  for (const auto& t : tets)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<uint32_t, 3> f;
-      for (int v = 0, o = 0; v < 4; ++v)
-        if (v != skip) f[size_t(o++)] = t[size_t(v)];
-      std::sort(f.begin(), f.end());
-      ++uses[f];
-    }
-  return uses;
 }
 
 // A warped face between two cells where one of them cannot take the face's first point as its

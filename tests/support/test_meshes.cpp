@@ -91,4 +91,11 @@ mesh::UnstructuredMesh pyramidGrid(int n, double size) {
   return b.finish();
 }
 
+glm::dvec3 cellCentroid(const mesh::UnstructuredMesh& m, int t, size_t e) {
+  const uint32_t nv = mesh::numVerts(mesh::kAllCellTypes[t]);
+  glm::dvec3 c(0.0);
+  for (uint32_t k = 0; k < nv; ++k) c += m.points[m.cells[t][e * nv + k]];
+  return c / double(nv);
+}
+
 }  // namespace sm::test

@@ -17,4 +17,7 @@ mesh::UnstructuredMesh wedgeGrid(int n, double size = 1.0);
 // The grid with every cell split into six pyramids around an added centre vertex.
 mesh::UnstructuredMesh pyramidGrid(int n, double size = 1.0);
 
+// The mean of the vertices of element e of type index t.
+glm::dvec3 cellCentroid(const mesh::UnstructuredMesh& m, int t, size_t e);
+
 }  // namespace sm::test
