@@ -40,6 +40,19 @@ inline std::string broadcastString(Collectives& coll, std::string text) {
   return text;
 }
 
+// Rank 0's `names` on every rank (collective). Names must not hold a newline (field and array
+// names do not: VTK's XML attributes and legacy tokens cannot).
+inline std::vector<std::string> broadcastNames(Collectives& coll, std::vector<std::string> names) {
+  std::string joined;
+  for (const std::string& n : names) joined += n + '\n';
+  joined = broadcastString(coll, std::move(joined));
+  names.clear();
+  for (size_t start = 0, end; (end = joined.find('\n', start)) != std::string::npos;
+       start = end + 1)
+    names.push_back(joined.substr(start, end - start));
+  return names;
+}
+
 class SingleProcess final : public Collectives {
  public:
   int rank() const override { return 0; }

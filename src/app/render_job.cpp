@@ -218,10 +218,12 @@ void runRender(const RenderJob& job, Collectives& coll) {
   shareOptions.streamSteps = true;
   // Only the field rendered is read: a solver's file may hold dozens, and a component ("v[2]")
   // is a field only when asked for by name.
+  const std::string cellDefault = defaultCellField(job, coll);
   if (!job.field.empty()) shareOptions.read.fields = {job.field};
+  if (!cellDefault.empty()) shareOptions.read.fields = {cellDefault};
   RankShare share = loadRankShare(job.mesh, shareOptions, coll);
   const StepSource source(job.mesh, share, coll);
-  const std::string field = resolveField(job, share.mesh, coll);
+  const std::string field = cellDefault.empty() ? resolveField(job, share.mesh, coll) : cellDefault;
   const std::vector<uint64_t> steps = selectSteps(
       job.time,
       agreedStepCount(job.mesh, field, source.numSteps(field), share.mesh.numPoints() > 0, coll),

@@ -1,10 +1,12 @@
 #include "app/render_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "common/error.h"
 #include "common/log.h"
+#include "io/mesh_io.h"
 #include "render/frame_defaults.h"
 
 namespace sm::app {
@@ -27,6 +29,41 @@ std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, 
     log::info("--field not given: rendering '", name, "'");
   }
   return broadcastString(coll, std::move(name));
+}
+
+HeaderFields listHeaderFields(const std::string& path, const io::ReadOptions& read,
+                              Collectives& coll) {
+  HeaderFields h;
+  if (coll.rank() == 0) {
+    try {
+      std::vector<std::string> cells = io::listCellData(path, read);
+      // The first piece alone: whether the pieces agree is the load's to say (on several ranks,
+      // naming the ranks and their pieces).
+      io::ReadOptions first = read;
+      first.pieces = {0};
+      if (!cells.empty())
+        for (const io::FieldStepCount& f : io::listFieldSteps(path, first))
+          h.points.push_back(f.name);
+      for (std::string& c : cells)
+        if (std::find(h.points.begin(), h.points.end(), c) == h.points.end())
+          h.cells.push_back(std::move(c));
+    } catch (const Error&) {
+      h = {};  // a file these headers do not describe is the load's to refuse, in its words
+    }
+  }
+  h.points = broadcastNames(coll, std::move(h.points));
+  h.cells = broadcastNames(coll, std::move(h.cells));
+  return h;
+}
+
+std::string defaultCellField(const RenderJob& job, Collectives& coll) {
+  if (!job.field.empty()) return {};
+  const HeaderFields h = listHeaderFields(job.mesh, job.share.read, coll);
+  if (!h.points.empty() || h.cells.empty()) return {};
+  if (coll.rank() == 0)
+    log::info("--field not given: rendering cell data '", h.cells.front(), "' (", job.mesh,
+              " has no point fields)");
+  return h.cells.front();
 }
 
 uint64_t agreedStepCount(const std::string& path, const std::string& field, uint64_t mine,

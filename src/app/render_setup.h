@@ -22,6 +22,21 @@ void checkImageSize(const RenderJob& job);
 // The job's field, or rank 0's first point field when none was asked for (collective).
 std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m, Collectives& coll);
 
+// A file's fields as its XML headers give them, read by rank 0 for every rank (collective): its
+// cell data (io::listCellData), and, where it has some, the point fields of its first piece, so
+// that a name both hold can be told apart (it reads as point data). Both empty for a file without
+// cell data or without such headers (legacy .vtk, .ugrid).
+struct HeaderFields {
+  std::vector<std::string> points, cells;  // cells: those that are not point data too
+};
+HeaderFields listHeaderFields(const std::string& path, const io::ReadOptions& read,
+                              Collectives& coll);
+
+// The field a job without --field renders: rank 0's first point field once loaded, or, for a file
+// of cell data alone, its first cell array (read as any --field NAME). Empty: the first point
+// field (resolveField). Collective.
+std::string defaultCellField(const RenderJob& job, Collectives& coll);
+
 // The number of time steps of `field` that every rank with points has (collective); 0 when none
 // has points. Ranks whose pieces disagree are refused, naming `path`, a rank of each count and the
 // counts, as one rank reading the same pieces refuses them (io::listFieldSteps): otherwise the

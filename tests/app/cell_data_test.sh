@@ -240,6 +240,17 @@ check "view of cell data as render's image" render.png view.png
 env -u DISPLAY -u WAYLAND_DISPLAY "$sm" view cells.pvtu --field 'v[1]' "${small[@]}" --range 1.8,5 \
   --headless --frames 1 --screenshot view-v.png
 check "view of a component of cell data as render's image" render-v.png view-v.png
+# Without --field, a file of cell data alone renders its first cell array (as the viewer opens on
+# it), on one rank and on three; the log says so.
+for ranks in 1 3; do
+  log=$(mpiexec -n $ranks --oversubscribe "$sm" -v render cells.pvtu "${small[@]}" --range 0.9,2.5 \
+    --out "default$ranks.png" 2>&1)
+  grep -qF -- "--field not given: rendering cell data 'c'" <<<"$log" ||
+    { echo "FAIL: no default cell field on $ranks ranks: $log"; fails=$((fails + 1)); }
+  mpiexec -n $ranks --oversubscribe "$sm" render cells.pvtu --field c "${small[@]}" --range 0.9,2.5 \
+    --out "named$ranks.png"
+  check "render without --field as --field c ($ranks ranks)" "named$ranks.png" "default$ranks.png"
+done
 # On three ranks, each reading its interlocked pieces, too.
 mpiexec -n 3 --oversubscribe "$sm" render checker.pvtu --field c "${small[@]}" --range 0.9,2.5 \
   --out render3.png

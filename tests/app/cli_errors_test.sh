@@ -110,11 +110,13 @@ expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.p
 expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
-# Cell data only (what finite-volume solvers write): read when --field names it (app.cell-data
-# renders it: this test runs no renders, as the sanitizer build runs it and the driver leaks), and
-# named as cell data, not as a missing field, when no field is given.
+# Cell data only (what finite-volume solvers write): a .vtu's renders without --field, its first
+# array (app.cell-data renders it: this test runs no renders, as the sanitizer build runs it and
+# the driver leaks); a legacy file's, whose cell data is known only by reading it, is named as
+# cell data, not as a missing field, when no field is given.
 sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="pressure"/;s/>0 1 2 3</>7</;}' -e 's/PointData/CellData/g' forged.vtu > cells.vtu
-expect "cells.vtu: has no point fields to render; its cell data (pressure) is read when --field names it" "$sm" render cells.vtu --out a.png
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\nCELL_DATA 1\nSCALARS pressure float 1\nLOOKUP_TABLE default\n7\n' > cells.vtk
+expect "cells.vtk: has no point fields to render; its cell data (pressure) is read when --field names it" "$sm" render cells.vtk --out a.png
 if ! "$sm" info cells.vtu | grep -q "cell data  *pressure (--field NAME renders it"; then
   echo "FAIL: info does not list the cell data"; fails=$((fails + 1))
 fi

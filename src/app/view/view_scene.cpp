@@ -9,32 +9,21 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "common/timer.h"
-#include "io/mesh_io.h"
 #include "render/frame_defaults.h"
 
 namespace sm::view {
 namespace {
 
-std::vector<std::string> splitLines(const std::string& joined) {
-  std::vector<std::string> names;
-  for (size_t start = 0; start <= joined.size();) {
-    size_t end = std::min(joined.find('\n', start), joined.size());
-    names.push_back(joined.substr(start, end - start));
-    start = end + 1;
-  }
-  return names;
-}
-
 // Rank 0's list, on every rank: a rank without clusters may have read no fields at all.
 std::vector<std::string> agreedFieldNames(const mesh::UnstructuredMesh& m, const std::string& first,
                                           app::Collectives& coll) {
-  std::string joined;
+  std::vector<std::string> names;
   if (coll.rank() == 0) {
-    joined = first;
+    names.push_back(first);
     for (const auto& f : m.fields)
-      if (f.name != first) joined += '\n' + f.name;
+      if (f.name != first) names.push_back(f.name);
   }
-  return splitLines(app::broadcastString(coll, std::move(joined)));
+  return app::broadcastNames(coll, std::move(names));
 }
 
 std::vector<std::string> colormapChoices(const std::string& first) {
@@ -50,25 +39,11 @@ std::vector<std::string> colormapChoices(const std::string& first) {
 // in memory, e.g. one .vtu split among ranks), only --field names it. A name that is also point
 // data (foamToVTK writes both) stays the point data. Rank 0 reads the headers for every rank.
 void withCellData(const std::string& path, app::ShareOptions& share, app::Collectives& coll) {
-  std::string joined;
-  if (coll.rank() == 0 && app::streamsCellData(path, share, coll.size())) {
-    std::vector<std::string> cells = io::listCellData(path, share.read);
-    // The point fields of the first piece alone: whether the pieces agree is the load's to say
-    // (on several ranks, naming the ranks and their pieces).
-    io::ReadOptions first = share.read;
-    first.pieces = {0};
-    std::vector<std::string> names;
-    if (!cells.empty())
-      for (const io::FieldStepCount& f : io::listFieldSteps(path, first)) names.push_back(f.name);
-    const size_t points = names.size();
-    for (std::string& c : cells)
-      if (std::find(names.begin(), names.end(), c) == names.end()) names.push_back(std::move(c));
-    for (size_t i = 0; points < names.size() && i < names.size(); ++i)
-      joined += (i ? "\n" : "") + names[i];
-  }
-  joined = app::broadcastString(coll, std::move(joined));
-  if (joined.empty()) return;
-  share.read.fields = splitLines(joined);
+  if (!app::streamsCellData(path, share, coll.size())) return;  // the same on every rank
+  app::HeaderFields h = app::listHeaderFields(path, share.read, coll);
+  if (h.cells.empty()) return;
+  share.read.fields = std::move(h.points);
+  share.read.fields.insert(share.read.fields.end(), h.cells.begin(), h.cells.end());
   share.cellData = true;
 }
 
