@@ -232,7 +232,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
       job.range ? *job.range : sequenceRange(job.mesh, source, field, steps, coll);
   const double loadSeconds = total.seconds();  // with the range pass over the steps
   const uint64_t peakAfterLoad = peakResidentBytes();
-  render::RenderSettings s = makeSettings(job, share, range);
+  render::RenderSettings s = makeSettings(job, share, field, range);
   s.compositeMethod = job.composite;
   const std::vector<FramePlan> plan = planFrames(job, steps, s, share.wholeBounds);
 

@@ -102,7 +102,7 @@ scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
 }
 
 render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
-                                    std::pair<double, double> range) {
+                                    const std::string& field, std::pair<double, double> range) {
   render::RenderSettings s;
   s.width = job.width;
   s.height = job.height;
@@ -113,7 +113,7 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   if (job.logScale) {
     s.transferFunction.scale = scene::ScalarScale::Log;
     if (!(range.first > 0))
-      throw Error("--log-scale: field '", job.field, "' has the range ", range.first, " .. ",
+      throw Error("--log-scale: field '", field, "' has the range ", range.first, " .. ",
                   range.second,
                   ", and a log scale needs a positive one: give --range LO,HI with "
                   "0 < LO < HI");

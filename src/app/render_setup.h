@@ -47,10 +47,10 @@ uint64_t agreedStepCount(const std::string& path, const std::string& field, uint
 // --eye/--at/--up/--fovy, or the --view preset framing the whole data set.
 scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole);
 
-// Settings for the job's first frame: camera, transfer function over `range`, sample step;
-// throws naming the option when a value is unusable.
+// Settings for the job's first frame: camera, transfer function over `range` (of `field`, the one
+// shown, for messages), sample step; throws naming the option when a value is unusable.
 render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
-                                    std::pair<double, double> range);
+                                    const std::string& field, std::pair<double, double> range);
 
 vk::ContextOptions contextOptions(const RenderJob& job);
 

@@ -92,6 +92,9 @@ off=$(keyed key_off 'key g\nframe\nkey g\nframe\nquit\n')
 bad() { refused "$1" bad.pfm "$sm" render cube.pvtu "${@:2}" --size 16x16 --out bad.pfm; }
 bad "--log-scale: field 'linear' has the range 0 .. 1, and a log scale needs a positive one" \
   --field linear --log-scale
+# Without --field, the message names the field shown (the file's first).
+bad "--log-scale: field 'linear' has the range 0 .. 1, and a log scale needs a positive one" \
+  --log-scale
 bad "--log-scale: field 'shock' has the range -1 .. 4, and a log scale needs a positive one" \
   --field shock --range -1,4 --log-scale
 refused "--log-scale: field 'linear' has the range 0 .. 1" bad.png \

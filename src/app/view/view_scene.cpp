@@ -90,7 +90,7 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   choices_.cutAvailable = job.clipPlanes.size() < size_t(scene::kMaxClipPlanes);
   fields_.resize(choices_.fields.size());
   selectField(0);
-  settings_ = app::makeSettings(job, share_, field_.range);
+  settings_ = app::makeSettings(job, share_, field_.name, field_.range);
   colormap_ = 0;
   home_ = settings_.camera;
   finestInteractiveStep_ = settings_.dt / 100.0;
