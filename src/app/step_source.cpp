@@ -41,10 +41,10 @@ uint64_t StepSource::numSteps(const std::string& field) const {
 }
 
 void StepSource::warnNonFinite(const char* what, const std::string& field, uint64_t step,
-                               const std::vector<float>& values) const {
+                               const std::vector<float>& values,
+                               std::span<const uint32_t> origins) const {
   if (step == 0) return;  // loading warned about it
-  uint64_t n = 0;
-  for (float v : values) n += !std::isfinite(v);
+  const uint64_t n = mesh::nonFiniteCells(values, origins);
   if (n == 0) return;
   {  // once per step: the range pass and the frame read the same step
     std::lock_guard<std::mutex> lock(warnedMutex_);
@@ -69,7 +69,7 @@ std::vector<float> StepSource::readCells(const std::string& field, uint64_t step
                     " values; the pieces read had ", s.fileCellCount, " cells when loaded");
   std::vector<float> mine(s.fileCells.size());
   for (size_t i = 0; i < mine.size(); ++i) mine[i] = all[s.fileCells[i]];
-  warnNonFinite("cell data", field, step, mine);
+  warnNonFinite("cell data", field, step, mine, s.fileCells);
   return mine;
 }
 

@@ -54,8 +54,10 @@ class StepSource {
   std::vector<float> read(const std::string& field, uint64_t step, unsigned threads = 0,
                           const io::StopRequested& stop = {}) const;
   // Loading warned about step 0's non-finite values; streamed steps warn here, once each.
+  // `origins`: cell data's, so that a polyhedron's tetrahedra count once (mesh::nonFiniteCells).
   void warnNonFinite(const char* what, const std::string& field, uint64_t step,
-                     const std::vector<float>& values) const;
+                     const std::vector<float>& values,
+                     std::span<const uint32_t> origins = {}) const;
 
   std::string path_;
   const RankShare& share_;

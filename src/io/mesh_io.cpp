@@ -40,11 +40,20 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool avera
   for (const mesh::CellField& f : m.cellFields) {
     log::info(m.source, ": field '", f.name,
               "' is cell data: each point takes the mean of the cells around it");
+    // Counted by cells of the file: a polyhedron's tetrahedra once.
+    const bool byOrigin = m.cellOrigin.size() == m.numCells();
     uint64_t nonFinite = 0, firstStep = 0;
-    for (size_t k = 0; k < f.steps.size(); ++k)
-      for (const auto& values : f.steps[k])
-        for (float v : values)
-          if (!std::isfinite(v) && nonFinite++ == 0) firstStep = k;
+    for (size_t k = 0; k < f.steps.size(); ++k) {
+      size_t first = 0;
+      for (const auto& values : f.steps[k]) {
+        const uint64_t n = mesh::nonFiniteCells(
+            values, byOrigin ? std::span(m.cellOrigin).subspan(first, values.size())
+                             : std::span<const uint32_t>());
+        if (n > 0 && nonFinite == 0) firstStep = k;
+        nonFinite += n;
+        first += values.size();
+      }
+    }
     // The step is named: a series' mesh is named after its first file, whichever holds them.
     if (nonFinite)
       log::warning(m.source, ": cell data '", f.name, "' has ", nonFinite,

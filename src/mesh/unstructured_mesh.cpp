@@ -188,6 +188,17 @@ void forEachCellUse(const UnstructuredMesh& m, uint64_t numPoints, Use&& use) {
 
 }  // namespace
 
+uint64_t nonFiniteCells(std::span<const float> perElement, std::span<const uint32_t> origins) {
+  SM_CHECK(origins.empty() || origins.size() == perElement.size());
+  uint64_t n = 0;
+  for (size_t i = 0; i < perElement.size(); ++i)
+    if (!std::isfinite(perElement[i]) &&
+        (origins.empty() || i == 0 || origins[i] != origins[i - 1] ||
+         std::isfinite(perElement[i - 1])))
+      ++n;
+  return n;
+}
+
 std::vector<double> cellUsesAtPoints(const UnstructuredMesh& m) {
   std::vector<double> uses(m.numPoints(), 0.0);
   forEachCellUse(m, m.numPoints(), [&](uint32_t v, int, size_t, size_t) { uses[v] += 1.0; });

@@ -122,6 +122,10 @@ std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, const CellField&
 std::vector<double> cellSumsAtPoints(const UnstructuredMesh& m, std::span<const float> perElement,
                                      uint64_t numPoints);
 std::vector<float> meansAtPoints(const std::vector<double>& sums, const std::vector<double>& uses);
+// Cells with a non-finite value among per-element values whose origins are `origins` (parallel;
+// empty: one cell per element): a polyhedron's tetrahedra, consecutive with one origin, are one
+// cell, as warnings count cells of the file.
+uint64_t nonFiniteCells(std::span<const float> perElement, std::span<const uint32_t> origins);
 
 // The other way (VTK's Point Data to Cell Data): every point field becomes a cell field of the same
 // name, each element taking the mean of its vertices' values. Test meshes use it to stand for a

@@ -162,6 +162,22 @@ TEST(Polyhedra, CellDataReachesEveryTetrahedronOfTheCell) {
   EXPECT_EQ(readCellFieldStep(path, "c", 0, o, m.cellOrigin), c);
 }
 
+// A non-finite value on a polyhedron is one cell's, however many tetrahedra it became: the warning
+// counts cells of the file.
+TEST(Polyhedra, NonFiniteCellDataCountsTheCellOnce) {
+  std::string text = vtuWith(streamArrays());
+  const size_t at = text.find(">10 20<");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 7, ">nan 20<");
+  const std::string path = write("nan.vtu", text);
+  ReadOptions o;
+  o.fields = {"c"};
+  testing::internal::CaptureStderr();
+  const mesh::UnstructuredMesh m = readMesh(path, o);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("cell data 'c' has 1 non-finite values"), std::string::npos) << err;
+}
+
 // Two <Piece>s in one file, the polyhedron in the second: its face ids are the piece's own.
 TEST(Polyhedra, FaceIdsArePieceLocal) {
   std::string one = vtuWith(streamArrays());

@@ -15,6 +15,7 @@
 
 #include "mesh/element_geometry.h"
 #include "mesh/polyhedron.h"
+#include "mesh/unstructured_mesh.h"
 
 namespace sm::mesh {
 namespace {
@@ -321,6 +322,16 @@ TEST(Polyhedron, PiecesNumberingSharedPointsDifferentlyStillConform) {
     once += count == 1 ? 1 : 0;
   }
   EXPECT_EQ(once, size_t(6 * n * n * 2));  // the outside's squares, two triangles each
+}
+
+// Non-finite values counted by cells: consecutive elements of one origin (a polyhedron's
+// tetrahedra) once, elements without origins each.
+TEST(NonFiniteCells, APolyhedronsTetrahedraCountOnce) {
+  const float nan = std::nanf("");
+  const std::vector<float> values = {1, nan, nan, nan, 2, nan, nan};
+  const std::vector<uint32_t> origins = {0, 1, 1, 1, 2, 3, 4};
+  EXPECT_EQ(nonFiniteCells(values, origins), 3u);  // cells 1, 3 and 4
+  EXPECT_EQ(nonFiniteCells(values, {}), 5u);
 }
 
 // Each face of `cell` turned outward (Newell normal away from the cell's centre): the cells below
