@@ -81,7 +81,14 @@ void VtuPolyhedra::readStream(const VtuDocument& doc, pugi::xml_node cells,
   end_.assign(types.size(), 0);
   int64_t prev = 0;
   for (size_t c = 0; c < types.size(); ++c) {
-    if (types[c] != kPolyhedron) continue;  // -1 there, by VTK's convention; not needed
+    if (types[c] != kPolyhedron) {
+      // -1 there, as VTK writes it: an end given to another cell says the streams are not where
+      // the polyhedra's entries put them (VTK would read a stream for that cell).
+      if (offsets[c] >= 0)
+        throw FileError(src_, "faceoffsets: cell ", c, " (VTK type ", types[c], ") has the entry ",
+                        offsets[c], ", but only polyhedra (type 42) have faces: -1 expected");
+      continue;
+    }
     if (offsets[c] < prev)
       throw FileError(src_, "faceoffsets: polyhedron cell ", c, " ends at ", offsets[c],
                       ", before the previous one's end (", prev, ")");

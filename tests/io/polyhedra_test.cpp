@@ -222,6 +222,9 @@ TEST(Polyhedra, DamagedFacesAreOneLineErrors) {
        vtuWith("<DataArray type=\"Int64\" Name=\"faces\" format=\"ascii\">1</DataArray>"),
        "has polyhedra with a 'faces' array but no 'faceoffsets' array"},
       {"offsets.vtu", vtuWith(faceArrays("6 5")), "polyhedron_offsets: entry 1 (5) is smaller"},
+      {"other_cell.vtu", vtuWith(streamArrays(kCubeFaces, "31 31")),
+       "faceoffsets: cell 1 (VTK type 10) has the entry 31, but only polyhedra (type 42) have "
+       "faces: -1 expected"},
       {"no_faces.vtu", vtuWith(faceArrays("0 6")),
        "polyhedron_offsets: polyhedron cell 0 has no faces"},
       {"no_to_faces.vtu",
