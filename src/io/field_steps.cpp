@@ -3,6 +3,7 @@
 // step in memory at a time, instead of every step being loaded with the mesh.
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "common/error.h"
 #include "common/file_util.h"
@@ -231,6 +232,22 @@ std::vector<float> mapValues(const std::string& path, std::vector<float> values,
   return out;
 }
 
+// The point and cell arrays of the first piece of a .vtu, a .pvtu or a series' first file, from
+// its XML header; none for formats without one.
+struct FirstPieceArrays {
+  std::vector<ArrayInfo> points, cells;
+};
+std::optional<FirstPieceArrays> firstPieceArrays(const std::string& path,
+                                                 const ReadOptions& options) {
+  if (isSeries(path)) return firstPieceArrays(readSeriesIndex(path).at(0).file, options);
+  if (fileExtension(path) != ".vtu" && !isPieceIndex(path)) return std::nullopt;
+  const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
+  FileBytes bytes = FileBytes::openLazily(file);
+  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
+  const std::vector<VtuPiece> pieces = vtuPieces(doc);
+  return FirstPieceArrays{vtuPointArrays(doc, pieces.at(0)), vtuCellArrays(doc, pieces.at(0))};
+}
+
 }  // namespace
 
 std::vector<float> wholeReadFieldStep(
@@ -294,28 +311,18 @@ std::vector<float> readCellFieldStep(const std::string& path, const std::string&
 }
 
 std::vector<std::string> listCellData(const std::string& path, const ReadOptions& options) {
-  if (isSeries(path)) return listCellData(readSeriesIndex(path).at(0).file, options);
-  if (fileExtension(path) != ".vtu" && !isPieceIndex(path)) return {};
-  const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
-  FileBytes bytes = FileBytes::openLazily(file);
-  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
+  const std::optional<FirstPieceArrays> arrays = firstPieceArrays(path, options);
   std::vector<std::string> names;
-  for (const ArrayInfo& a : vtuCellArrays(doc, vtuPieces(doc).at(0)))
-    if (!a.identifier) names.push_back(a.name);
+  if (arrays)
+    for (const ArrayInfo& a : arrays->cells)
+      if (!a.identifier) names.push_back(a.name);
   return dataCellArrays(names, options);
 }
 
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
-  if (isSeries(path)) return asksForCellData(readSeriesIndex(path).at(0).file, options);
-  const std::string ext = fileExtension(path);
-  if (options.fields.empty() || !options.loadFields || (ext != ".vtu" && !isPieceIndex(path)))
-    return false;
-  const std::string file = isPieceIndex(path) ? pvtuPieceFiles(path).at(0) : path;
-  FileBytes bytes = FileBytes::openLazily(file);
-  VtuDocument doc(bytes, file, "UnstructuredGrid", options.threads);
-  const std::vector<VtuPiece> pieces = vtuPieces(doc);
-  return splitFieldRequests(vtuPointArrays(doc, pieces[0]), vtuCellArrays(doc, pieces[0]), options)
-      .cells.loadFields;
+  if (options.fields.empty() || !options.loadFields) return false;
+  const std::optional<FirstPieceArrays> arrays = firstPieceArrays(path, options);
+  return arrays && splitFieldRequests(arrays->points, arrays->cells, options).cells.loadFields;
 }
 
 }  // namespace sm::io

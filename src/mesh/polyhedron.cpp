@@ -185,41 +185,54 @@ PolyhedronSplit tetrahedralize(const PolyhedronFaces& faces, const std::vector<g
     std::span<const uint32_t> c = faces.face(f);
     return std::find(c.begin(), c.end(), apex) != c.end();
   };
-  // The sign of every cone from `apex`, 0 if it cannot be the apex. Every face keeps its own cut
+  // The sign of every cone from `apex` (0 if it cannot be the apex), and whether it is exact:
+  // no face on it is flat with it unless that face is a fan from it. Every face keeps its own cut
   // (triangulateFace), so the cells on a face agree: a warped face's triangles away from the apex
   // are cones of their own. Only where a face on the apex is flat with it and not a fan from it
-  // (exact: the first pass refuses that) do the two sides cut a plane differently.
-  auto signFrom = [&](uint32_t apex, bool exact) {
+  // do the two sides cut a plane differently.
+  auto signFrom = [&](uint32_t apex, bool& exact) {
     int sign = 0;
+    exact = true;
     for (size_t f = 0, begin = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
       const bool apexFace = onFace(f, apex);
       for (size_t t = begin; t < faceEnd[f]; ++t) {
         const int s = cone(apex, t, apexFace);
-        if (s == 0 || (s == kFlatOnApexFace && !exact)) continue;
-        if (s == kFlatOnApexFace || s == kFlatElsewhere || (sign != 0 && s != sign)) return 0;
+        if (s == 0) continue;
+        if (s == kFlatOnApexFace) {
+          exact = false;
+          continue;
+        }
+        if (s == kFlatElsewhere || (sign != 0 && s != sign)) return 0;
         sign = s;
       }
     }
     return sign;
   };
-  for (bool exact : {true, false})
-    for (uint32_t apex : verts) {
-      const int sign = signFrom(apex, exact);
-      if (sign == 0) continue;
-      for (size_t f = 0, begin = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
-        const bool apexFace = onFace(f, apex);
-        for (size_t t = begin; t < faceEnd[f]; ++t) {
-          const int s = cone(apex, t, apexFace);
-          if (s != 1 && s != -1) continue;
-          const auto& r = tris[t];
-          // VTK's positive order: the base turns towards the apex.
-          tets.push_back(sign > 0 ? std::array<uint32_t, 4>{r[0], r[1], r[2], apex}
-                                  : std::array<uint32_t, 4>{r[0], r[2], r[1], apex});
-        }
-      }
-      return PolyhedronSplit::Ok;
+  // The first exact apex, else the first that sees every cone.
+  uint32_t apex = 0;
+  int sign = 0;
+  for (uint32_t v : verts) {
+    bool exact = false;
+    const int s = signFrom(v, exact);
+    if (s != 0 && (sign == 0 || exact)) {
+      apex = v;
+      sign = s;
+      if (exact) break;
     }
-  return PolyhedronSplit::NotStarShaped;
+  }
+  if (sign == 0) return PolyhedronSplit::NotStarShaped;
+  for (size_t f = 0, begin = 0; f < faces.numFaces(); begin = faceEnd[f], ++f) {
+    const bool apexFace = onFace(f, apex);
+    for (size_t t = begin; t < faceEnd[f]; ++t) {
+      const int s = cone(apex, t, apexFace);
+      if (s != 1 && s != -1) continue;
+      const auto& r = tris[t];
+      // VTK's positive order: the base turns towards the apex.
+      tets.push_back(sign > 0 ? std::array<uint32_t, 4>{r[0], r[1], r[2], apex}
+                              : std::array<uint32_t, 4>{r[0], r[2], r[1], apex});
+    }
+  }
+  return PolyhedronSplit::Ok;
 }
 
 }  // namespace sm::mesh

@@ -64,7 +64,7 @@ bool triangulateFace(std::span<const uint32_t> cycle, const std::vector<glm::dve
 
 // The tetrahedra of polyhedron `faces`, in VTK vertex order with positive volume, appended to
 // `tets` (left as it was unless Ok). Faces may be oriented all outward or all inward. At most
-// kMaxApexTries vertices are tried as the apex, twice (header comment).
+// kMaxApexTries vertices are tried as the apex (header comment).
 PolyhedronSplit tetrahedralize(const PolyhedronFaces& faces, const std::vector<glm::dvec3>& points,
                                std::vector<std::array<uint32_t, 4>>& tets);
 
