@@ -106,8 +106,7 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
                                   const ReadOptions& options,
-                                  const std::vector<std::string>& cellArrays,
-                                  std::string_view kind) {
+                                  const std::vector<std::string>* cellData, std::string_view kind) {
   std::vector<FieldLoad> loads;
   if (!options.loadFields) return loads;
   const std::vector<Group> groups = groupArrays(source, pointArrays, kind);
@@ -132,12 +131,17 @@ std::vector<FieldLoad> planFields(const std::string& source,
     auto it = split ? byName(split->first) : groups.end();
     if (it == groups.end()) {
       // A name that is no array at all: the cell data is listed too, where the field may be.
-      const std::string hint = mesh::cellArrayHint(cellArrays, request);
+      const std::vector<std::string> none;
+      const std::vector<std::string>& cellNames = cellData ? *cellData : none;
+      const std::string hint = mesh::cellArrayHint(cellNames, request);
       std::string cells;
-      for (const std::string& n : hint.empty() ? cellArrays : std::vector<std::string>{})
-        cells += (cells.empty() ? "; cell data: " : ", ") + n;
-      throw FileError(source, "has no ", kind, " array '", split ? split->first : request, "' (",
-                      kind, " arrays: ", listNames(groups), cells, ")", hint);
+      if (cellData && hint.empty()) {
+        for (const std::string& n : cellNames) cells += (cells.empty() ? "" : ", ") + n;
+        cells = "; cell data: " + (cells.empty() ? std::string("none") : cells);
+      }
+      throw FileError(source, "has no ", kind, cellData && hint.empty() ? " or cell" : "",
+                      " array '", split ? split->first : request, "' (", kind,
+                      " arrays: ", listNames(groups), cells, ")", hint);
     }
     if (uint32_t(split->second) >= it->components)
       throw FileError(source, "field '", request, "': ", kind, " array '", it->base, "' has ",

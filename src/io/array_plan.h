@@ -42,12 +42,14 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
 // The loads that options ask for (every non-identifier array when options.fields is empty).
 // Throws sm::FileError(source, ...) for a requested name the file lacks (listing what it has), a
 // component out of range, or a name given both plain and with time steps.
-// `cellArrays` (dataCellArrays) only make that message say when a name is cell data.
-// `kind` names the arrays in messages ("point", or "cell" when planning cell data).
+// `cellData` (dataCellArrays), where given, says that the requests were looked for among the cell
+// data too, so that the message names both places and what each holds; a format without cell
+// data passes none. `kind` names the arrays in messages ("point", or "cell" when planning cell
+// data).
 std::vector<FieldLoad> planFields(const std::string& source,
                                   const std::vector<ArrayInfo>& pointArrays,
                                   const ReadOptions& options,
-                                  const std::vector<std::string>& cellArrays = {},
+                                  const std::vector<std::string>* cellData = nullptr,
                                   std::string_view kind = "point");
 
 // Which of options.fields a reader loads from point data and which from cell data (to be averaged

@@ -52,12 +52,12 @@ std::vector<FieldStepCount> countSteps(const std::string& source,
 // Every step of every field options ask for (ReadOptions::step narrows loads, not the listing).
 std::vector<FieldLoad> planAllSteps(const std::string& source, const std::vector<ArrayInfo>& arrays,
                                     const ReadOptions& options,
-                                    const std::vector<std::string>& cellArrays,
+                                    const std::vector<std::string>* cellData,
                                     std::string_view kind = "point") {
   if (!options.loadFields) return {};
   ReadOptions all = options;
   all.step.reset();
-  return planFields(source, arrays, all, cellArrays, kind);
+  return planFields(source, arrays, all, cellData, kind);
 }
 
 std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOptions& options) {
@@ -68,19 +68,17 @@ std::vector<FieldStepCount> vtuFieldSteps(const std::string& file, const ReadOpt
   if (options.fields.empty() || !options.loadFields) {  // every point array; no cell data
     ReadOptions all = options;
     all.loadFields = true;
-    return countSteps(file, planAllSteps(file, points, all, {}), points);
+    return countSteps(file, planAllSteps(file, points, all, nullptr), points);
   }
   // Cell data named as a field is a field readMesh loads too (averaged onto the points).
   const std::vector<ArrayInfo> cells = vtuCellArrays(doc, pieces[0]);
   const FieldSplit split = splitFieldRequests(points, cells, options);
+  const std::vector<std::string> cellData = dataCellArrays(vtuCellArrayNames(pieces[0]), options);
   std::vector<FieldStepCount> steps =
-      countSteps(file,
-                 planAllSteps(file, points, split.points,
-                              dataCellArrays(vtuCellArrayNames(pieces[0]), options)),
-                 points);
+      countSteps(file, planAllSteps(file, points, split.points, &cellData), points);
   if (split.cells.loadFields)
     for (FieldStepCount& f :
-         countSteps(file, planAllSteps(file, cells, split.cells, {}, "cell"), cells)) {
+         countSteps(file, planAllSteps(file, cells, split.cells, nullptr, "cell"), cells)) {
       f.cellData = true;
       steps.push_back(std::move(f));
     }
@@ -185,7 +183,7 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
                     " data (every step, and every piece of a .pvtu, must hold it alike)");
   const std::vector<ArrayInfo>& arrays = cells ? cellArrays : pointArrays;
   const char* kind = cells ? "cell" : "point";
-  const std::vector<FieldLoad> loads = planFields(file, arrays, one, {}, kind);
+  const std::vector<FieldLoad> loads = planFields(file, arrays, one, nullptr, kind);
   auto load =
       std::find_if(loads.begin(), loads.end(), [&](const FieldLoad& l) { return l.step == step; });
   if (load == loads.end())

@@ -187,13 +187,13 @@ class VtuReader {
         options_.fields.empty() ? std::vector<ArrayInfo>{} : vtuCellArrays(doc_, pieces_[0]);
     const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
     readCellFields(cellInfos, split.cells);
-    for (const FieldLoad& load : planFields(src_, infos, split.points, cellArrays_))
+    for (const FieldLoad& load : planFields(src_, infos, split.points, &cellArrays_))
       builder_.addFieldStep(load.field, load.step, piecesValues(Data::Points, infos, load));
   }
 
   // Cell data asked for as fields: one value per file cell, kept for the cells kept.
   void readCellFields(const std::vector<ArrayInfo>& infos, const ReadOptions& cells) {
-    for (const FieldLoad& load : planFields(src_, infos, cells, {}, "cell"))
+    for (const FieldLoad& load : planFields(src_, infos, cells, nullptr, "cell"))
       builder_.addCellFieldStep(load.field, load.step, piecesValues(Data::Cells, infos, load));
   }
 

@@ -29,7 +29,7 @@ expect "--range: '1,3,'" "$sm" render ok.pvtu --range 1,3, --out a.png
 expect "--eye: '3,3,3,'" "$sm" render ok.pvtu --eye 3,3,3, --out a.png
 expect "--opacity: '0:0,1:1,' ends in ','" "$sm" render ok.pvtu --opacity 0:0,1:1, --out a.png
 expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
-expect "ok_0.vtu: has no point array 'nope' (point arrays: linear, shock, vortex, density)" "$sm" render ok.pvtu --field nope --out a.png
+expect "ok_0.vtu: has no point or cell array 'nope' (point arrays: linear, shock, vortex, density; cell data: none)" "$sm" render ok.pvtu --field nope --out a.png
 expect "--out" "$sm" render ok.pvtu --out a.jpg
 expect "--step" "$sm" render ok.pvtu --step -1 --out a.png
 expect "--step" "$sm" render ok.pvtu --step inf --out a.png

@@ -195,6 +195,32 @@ TEST(PvtuReader, AFieldWithOtherComponentsInOnePieceIsRefused) {
       << steps;
 }
 
+// Cell data that one piece lacks: a rank reading that piece alone names it as found in neither
+// the point nor the cell data of that piece, not as a missing point array.
+TEST(PvtuReader, APieceLackingTheCellDataIsNamed) {
+  const std::string dir = sm::test::outputDir("PvtuReader.LacksCellData");
+  std::string withCells = asciiTet(0, {});
+  withCells.insert(withCells.find("</Piece>"),
+                   "<CellData><DataArray type=\"Float32\" Name=\"c\" format=\"ascii\">1"
+                   "</DataArray></CellData>");
+  test::writeText(dir + "/p0.vtu", withCells);
+  test::writeText(dir + "/p1.vtu", asciiTet(2, {"f:1"}));
+  test::writeText(dir + "/m.pvtu",
+                  "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\"><PUnstructuredGrid>"
+                  "<Piece Source=\"p0.vtu\"/><Piece Source=\"p1.vtu\"/></PUnstructuredGrid>"
+                  "</VTKFile>");
+  ReadOptions o;
+  o.fields = {"c"};
+  o.pieces = {1};
+  const std::string msg = fileErrorOf([&] { readMesh(dir + "/m.pvtu", o); });
+  EXPECT_NE(msg.find(dir + "/p1.vtu: has no point or cell array 'c' (point arrays: f; cell data: "
+                           "none)"),
+            std::string::npos)
+      << msg;
+  o.pieces = {0};
+  EXPECT_EQ(readMesh(dir + "/m.pvtu", o).fields.at(0).name, "c");
+}
+
 // A multiblock file (.vtm, as VTK's vtkXMLMultiBlockDataWriter and solvers write one) whose
 // unstructured grids are the pieces of a .pvtu: the same welded mesh, piece for piece; surfaces
 // and empty blocks are left out.

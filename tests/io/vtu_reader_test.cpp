@@ -208,7 +208,7 @@ TEST(VtuReader, CellDataNamedAsAFieldIsAveragedOntoThePoints) {
   // A name in no array lists the cell data beside the point arrays: the field may be there.
   EXPECT_NE(
       fileErrorOf([&] { readMesh(fixture, other); })
-          .find("has no point array 'density' (point arrays: pressure, velocity (3 components), "
+          .find("has no point or cell array 'density' (point arrays: pressure, velocity (3 components), "
                 "temp, count; cell data: quality)"),
       std::string::npos);
   EXPECT_EQ(mesh::cellArrayHint({"quality"}, "density"), "");

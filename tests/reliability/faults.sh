@@ -125,7 +125,7 @@ same_error)
   # starts): one line says so, not one per rank.
   run render "${mpi3[@]}" render "$data" --field nosuch --size 48x48 --out "$dir/a.png"
   [ $status -ne 0 ] || fail "mpiexec succeeded with a missing field"
-  n=$(grep -c "failed: .*has no point array 'nosuch'" "$dir/render.log")
+  n=$(grep -c "failed: .*has no point or cell array 'nosuch'" "$dir/render.log")
   grep -q "rank 0 of 3 failed: .*'nosuch'" "$dir/render.log" || fail "rank 0 did not report"
   # One line, rank 0's; fewer than one per rank allows for a loaded machine slow to end the others.
   [ "$n" -lt 3 ] || fail "$n lines report the missing field (one per rank)"
