@@ -1,6 +1,7 @@
 #include "io/text_scan.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 
 #include "common/error.h"
@@ -56,9 +57,14 @@ void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& sour
     std::string_view tok = cursor.token();
     if (tok.empty())
       throw FileError(source, what, ": the text ends after ", i, " of ", n, " values");
-    if (!parseNumber(tok, out[i]))
-      throw FileError(source, what, ": value ", i, " ('", printable(tok), "') is not a ",
-                      std::is_floating_point_v<T> ? "number" : "whole number");
+    if (parseNumber(tok, out[i])) continue;
+    // A word here is most often the next section's keyword: the header promised more values.
+    if (std::all_of(tok.begin(), tok.end(),
+                    [](char c) { return std::isalpha(uint8_t(c)) || c == '_'; }))
+      throw FileError(source, what, ": found '", printable(tok), "' after ", i, " of the ", n,
+                      " values its header declares (the section holds fewer)");
+    throw FileError(source, what, ": value ", i, " ('", printable(tok), "') is not a ",
+                    std::is_floating_point_v<T> ? "number" : "whole number");
   }
 }
 

@@ -4,6 +4,7 @@
 // of the binary arrays it needs (ascii ones are parsed); the mesh is built at the end.
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 
 #include "common/error.h"
 #include "common/log.h"
@@ -40,6 +41,7 @@ class LegacyReader {
     for (std::string_view w = in_.token(); !w.empty(); w = in_.token()) {
       throwIfStopped(options_.stopRequested, src_);
       section(lowerCase(w));
+      previous_ = w;
     }
     throwIfStopped(options_.stopRequested, src_);
     return build();
@@ -189,6 +191,12 @@ class LegacyReader {
                key == "tensors6" || key == "texture_coordinates" || key == "color_scalars" ||
                key == "lookup_table" || key == "global_ids" || key == "pedigree_ids") {
       attribute(where_, key);
+    } else if (!in_.binary() && !key.empty() && std::strchr("0123456789+-.", key[0])) {
+      // A number where a keyword should be: the section before holds more than it declares.
+      in_.fail(concat("found the number '", printable(key), "' where a keyword should be: ",
+                      previous_.empty() ? std::string("the header")
+                                        : concat("the ", printable(previous_), " section"),
+                      " holds more values than it declares"));
     } else {
       in_.fail(concat("unknown keyword '", printable(key), "'"));
     }
@@ -230,6 +238,7 @@ class LegacyReader {
   LegacyScanner in_;
   bool newLayout_ = false, haveCells_ = false, haveTypes_ = false;
   Where where_ = Where::Dataset;
+  std::string previous_;  // the keyword of the section read last, for messages
   uint64_t numPoints_ = 0, numCells_ = 0;
   GhostCells ghostCells_;
   NumericArray points_, conn_, offsets_, types_, timeValues_;
@@ -317,14 +326,15 @@ void LegacyReader::addFields(mesh::MeshBuilder& b) {
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
   for (const auto& a : cellArrays_) cellInfos.push_back({a.name, a.data.components, a.identifier});
   const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
-  for (const FieldLoad& load : planFields(src_, cellInfos, split.cells, {}, "cell")) {
+  for (const FieldLoad& load : planFields(src_, cellInfos, split.cells, nullptr, "cell")) {
     if (cellArrays_[load.array].data.tuples != numCells_)
       throw FileError(src_, "cell array '", cellArrays_[load.array].name, "' does not have ",
                       numCells_, " values");
     b.addCellFieldStep(load.field, load.step,
                        toFloats(cellArrays_[load.array].data, load.component, options_.threads));
   }
-  for (const FieldLoad& load : planFields(src_, infos, split.points, dataCellArrayNames()))
+  const std::vector<std::string> cellData = dataCellArrayNames();
+  for (const FieldLoad& load : planFields(src_, infos, split.points, &cellData))
     b.addFieldStep(load.field, load.step,
                    toFloats(pointArrays_[load.array].data, load.component, options_.threads));
 }

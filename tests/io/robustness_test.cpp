@@ -170,7 +170,16 @@ TEST(Robustness, AbsurdSizesInLegacyVtk) {
   expectError(replaced(ascii, "POINTS 13 double", "POINTS 1099511627776 double"), "a.vtk",
               "too short");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 1099511627776"), "a.vtk", "too short");
-  expectError(replaced(ascii, "CELL_TYPES 8", "CELL_TYPES 9"), "a.vtk", "");
+  // A count one off names the section and what was found instead of its values.
+  expectError(replaced(ascii, "CELL_TYPES 8", "CELL_TYPES 9"), "a.vtk",
+              "cell types: found 'CELL_DATA' after 8 of the 9 values its header declares");
+  expectError(replaced(ascii, "CELL_TYPES 8", "CELL_TYPES 7"), "a.vtk",
+              "found the number '1' where a keyword should be: the CELL_TYPES section holds more "
+              "values than it declares");
+  expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 50"), "a.vtk",
+              "cells: found 'CELL_TYPES' after 49 of the 50 values");
+  expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 48"), "a.vtk",
+              "where a keyword should be: the CELLS section holds more values");
   expectError(replaced(ascii, "4 0 4 1 12", "4 0 4 1 13"), "a.vtk", "refers to point 13");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 9 49"), "a.vtk",
               "CELL_DATA 8 does not match the 9 cells");
