@@ -27,15 +27,23 @@ inline uint8_t code(char c) {
 
 bool Base64Reader::decodeQuantum(uint8_t* out, int& count) {
   uint8_t v[4];
+  size_t at[4];
   int n = 0;
   while (n < 4) {
     if (pos_ >= text_.size()) return false;
     uint8_t c = code(text_[pos_++]);
     if (c == kSpace) continue;
-    if (c == kInvalid) return false;
+    if (c == kInvalid) {
+      bad_ = pos_ - 1;
+      return false;
+    }
+    at[n] = pos_ - 1;
     v[n++] = c;
   }
-  if (v[0] == kPad || v[1] == kPad || (v[2] == kPad && v[3] != kPad)) return false;
+  if (v[0] == kPad || v[1] == kPad || (v[2] == kPad && v[3] != kPad)) {
+    bad_ = at[v[0] == kPad ? 0 : v[1] == kPad ? 1 : 2];
+    return false;
+  }
   uint32_t bits = (uint32_t(v[0]) << 18) | (uint32_t(v[1]) << 12);
   count = 1;
   if (v[2] != kPad) {

@@ -20,11 +20,16 @@ class Base64Reader {
   size_t maxRemaining() const {
     return size_t(pendingCount_ - pendingPos_) + (text_.size() - pos_) / 4 * 3 + 3;
   }
+  // After read returned false: where a character that is not base64 (or padding out of place)
+  // stopped it, as an index into the text; npos when the text just ended.
+  size_t badCharacter() const { return bad_; }
+  char characterAt(size_t i) const { return text_[i]; }
 
  private:
   bool decodeQuantum(uint8_t* out, int& count);  // 1 to 3 bytes of the next quantum
   std::string_view text_;
   size_t pos_;
+  size_t bad_ = std::string_view::npos;
   uint8_t pending_[3] = {};
   int pendingCount_ = 0, pendingPos_ = 0;
 };

@@ -8,6 +8,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/parallel.h"
+#include "io/text_scan.h"
 
 namespace sm::io {
 namespace {
@@ -24,7 +25,8 @@ Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t exp
   const uint64_t hs = f.header64 ? 8 : 4;
   ByteBuffer headerScratch;
   const uint8_t* h = src.take(hs, headerScratch);
-  if (!h) throw FileError(source, what, ": the data ends before the array's header");
+  if (!h)
+    throw FileError(source, what, ": ", src.whyShort("the data ends before the array's header"));
   const uint64_t declared = readHeaderValue(h, f);
   if (declared != expected)
     throw FileError(source, what, ": the array holds ", declared, " bytes, expected ", expected);
@@ -33,7 +35,8 @@ Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t exp
                     src.maxRemaining());
   Payload p;
   p.data = src.take(expected, p.storage);
-  if (!p.data) throw FileError(source, what, ": the data ends before the array does");
+  if (!p.data)
+    throw FileError(source, what, ": ", src.whyShort("the data ends before the array does"));
   return p;
 }
 
@@ -42,7 +45,9 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
   const uint64_t hs = f.header64 ? 8 : 4;
   ByteBuffer scratch;
   const uint8_t* h = src.take(3 * hs, scratch);
-  if (!h) throw FileError(source, what, ": the data ends before the compression header");
+  if (!h)
+    throw FileError(source, what, ": ",
+                    src.whyShort("the data ends before the compression header"));
   const uint64_t nBlocks = readHeaderValue(h, f);
   const uint64_t blockSize = readHeaderValue(h + hs, f);
   const uint64_t lastSize = readHeaderValue(h + 2 * hs, f);
@@ -62,7 +67,9 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
     throw FileError(source, what, ": the array holds ", total, " bytes, expected ", expected);
   ByteBuffer sizeScratch;
   const uint8_t* s = src.take(nBlocks * hs, sizeScratch);
-  if (!s) throw FileError(source, what, ": the data ends inside the compression header");
+  if (!s)
+    throw FileError(source, what, ": ",
+                    src.whyShort("the data ends inside the compression header"));
   std::vector<uint64_t> compOffset(nBlocks + 1, 0);
   for (uint64_t b = 0; b < nBlocks; ++b) {
     uint64_t c = readHeaderValue(s + b * hs, f);
@@ -76,7 +83,8 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
                     " compressed bytes, more than zlib can produce");
   ByteBuffer compScratch;
   const uint8_t* comp = src.take(compTotal, compScratch);
-  if (!comp) throw FileError(source, what, ": the data ends inside the compressed blocks");
+  if (!comp)
+    throw FileError(source, what, ": ", src.whyShort("the data ends inside the compressed blocks"));
   Payload p;
   p.storage = ByteBuffer::allocate(total);
   p.data = p.storage.data();
@@ -119,6 +127,15 @@ const uint8_t* PayloadSource::take(uint64_t n, ByteBuffer& scratch) {
   if (n > b64_.maxRemaining()) return nullptr;
   scratch = ByteBuffer::allocate(std::max<uint64_t>(n, 1));
   return b64_.read(scratch.data(), n) ? scratch.data() : nullptr;
+}
+
+std::string PayloadSource::whyShort(const std::string& ends) const {
+  const size_t bad = isBase64_ ? b64_.badCharacter() : std::string_view::npos;
+  if (bad == std::string_view::npos) return ends;
+  const char c = b64_.characterAt(bad);
+  return concat(c == '=' ? "padding '=' out of place"
+                         : concat("'", printable(std::string(1, c)), "', not base64,"),
+                " at character ", bad, " of its base64 text");
 }
 
 uint64_t PayloadSource::maxRemaining() const {

@@ -39,6 +39,9 @@ class PayloadSource {
   const uint8_t* take(uint64_t n, ByteBuffer& scratch);
   // Upper bound on the bytes left (exact for raw data).
   uint64_t maxRemaining() const;
+  // Why take returned null, for messages: `ends` ("the data ends ..."), unless a character that
+  // is not base64 stopped the decoding, which is named instead.
+  std::string whyShort(const std::string& ends) const;
 
  private:
   PayloadSource(std::span<const uint8_t> raw, size_t pos, std::string_view text, bool isBase64)

@@ -36,6 +36,21 @@ TEST(Base64, DecodesJointAndSeparatelyPaddedStreams) {
   EXPECT_EQ(decode("T===", {1}), "<short>");
 }
 
+// Where decoding stopped on a character, the reader says which (messages name it rather than
+// calling the data short).
+TEST(Base64, NamesTheCharacterThatStoppedIt) {
+  auto bad = [](std::string_view text) {
+    Base64Reader r(text);
+    uint8_t out[6];
+    EXPECT_FALSE(r.read(out, 6));
+    return r.badCharacter();
+  };
+  EXPECT_EQ(bad("TWFu"), std::string_view::npos);  // only short
+  EXPECT_EQ(bad("TWFu TW<u"), 7u);
+  EXPECT_EQ(bad("TWFuT===="), 5u);
+  EXPECT_EQ(bad("TWFu=WFu"), 4u);
+}
+
 TEST(ZlibBlocks, RoundTripWithPartialAndFullLastBlocks) {
   for (uint64_t bytes : {uint64_t(0), uint64_t(1), uint64_t(4096), uint64_t(10000)}) {
     SCOPED_TRACE(bytes);

@@ -162,6 +162,11 @@ TEST(Robustness, BrokenStructureInVtu) {
       "b.vtu", "unknown compressor");
   expectError(replaced(b64, "header_type=\"UInt32\"", "header_type=\"UInt16\""), "b.vtu",
               "header_type");
+  // A damaged character is named where it is, not taken for the end of the data.
+  expectError(replaced(b64, "AQAAAIAAAAA0AAAALgAAAA==", "AQ#AAIAAAAA0AAAALgAAAA=="), "b.vtu",
+              "point array 'pressure': '#', not base64, at character 13 of its base64 text");
+  expectError(replaced(b64, "AQAAAIAAAAA0AAAALgAAAA==", "AQAAA=AAAAA0AAAALgAAAA=="), "b.vtu",
+              "padding '=' out of place at character 16");
 }
 
 TEST(Robustness, AbsurdSizesInLegacyVtk) {
