@@ -75,8 +75,14 @@ int32_t UnstructuredMesh::numClusters() const {
 }
 
 Bounds UnstructuredMesh::bounds() const {
+  // Points no element uses (those of skipped 2D, line and vertex cells, a quadratic cell's
+  // mid-edge nodes) are left out: a stray far point must not shrink the view of the volume.
+  std::vector<uint8_t> used(points.size(), 0);
+  for (const auto& ids : cells)
+    for (uint32_t id : ids) used[id] = 1;
   Bounds b;
-  for (const auto& p : points) b.extend(p);
+  for (size_t i = 0; i < points.size(); ++i)
+    if (used[i]) b.extend(points[i]);
   return b;
 }
 

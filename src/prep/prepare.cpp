@@ -4,6 +4,8 @@
 #include <cfloat>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 #include "common/check.h"
 #include "common/error.h"
 #include "common/timer.h"
@@ -14,17 +16,30 @@
 namespace sm::prep {
 namespace {
 
+std::vector<uint8_t> usedPoints(const mesh::UnstructuredMesh& mesh) {
+  std::vector<uint8_t> used(mesh.points.size(), 0);
+  for (const auto& ids : mesh.cells)
+    for (uint32_t v : ids) used[v] = 1;
+  return used;
+}
+
 // Rebased float positions in the global order; returns order (new -> old).
 std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                                      std::vector<float>& positions) {
   std::vector<uint32_t> order = globalVertexOrder(mesh.points, frame);
   positions.resize(3 * order.size());
+  std::vector<uint8_t> used;  // built when a point out of float range is met
   for (size_t i = 0; i < order.size(); ++i) {
     glm::dvec3 p = (mesh.points[order[i]] - frame.origin) * frame.scale;
-    // Readers accept any finite double; the device works in float around the frame's origin.
-    if (!(std::abs(p.x) <= FLT_MAX && std::abs(p.y) <= FLT_MAX && std::abs(p.z) <= FLT_MAX))
-      throw Error(mesh.source, ": point ", order[i], " is too far from the mesh's centre for ",
-                  "single precision (coordinates must stay within 3.4e38 of it)");
+    // Readers accept any finite double; the device works in float around the frame's origin. A
+    // point no element uses is never drawn (the frame leaves it out): it is kept, clamped.
+    if (!(std::abs(p.x) <= FLT_MAX && std::abs(p.y) <= FLT_MAX && std::abs(p.z) <= FLT_MAX)) {
+      if (used.empty()) used = usedPoints(mesh);
+      if (used[order[i]])
+        throw Error(mesh.source, ": point ", order[i], " is too far from the mesh's centre for ",
+                    "single precision (coordinates must stay within 3.4e38 of it)");
+      p = glm::clamp(p, glm::dvec3(-FLT_MAX), glm::dvec3(FLT_MAX));
+    }
     positions[3 * i] = float(p.x);
     positions[3 * i + 1] = float(p.y);
     positions[3 * i + 2] = float(p.z);

@@ -49,8 +49,11 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
       shellTriangles_(r.numShellTriangles()),
       origin_(r.frame.origin),
       scale_(r.frame.scale) {
-  for (size_t i = 0; i + 2 < r.positions.size(); i += 3)
-    bounds_.extend(glm::dvec3(r.positions[i], r.positions[i + 1], r.positions[i + 2]));
+  // The shell's vertices bound the elements (a union of elements reaches its extremes on its
+  // boundary); points no element uses, however far, are not part of what is drawn.
+  for (uint32_t v : r.shellIndices)
+    bounds_.extend(glm::dvec3(r.positions[3 * uint64_t(v)], r.positions[3 * uint64_t(v) + 1],
+                              r.positions[3 * uint64_t(v) + 2]));
   hostPositions_ = r.positions;
   vertices_[0] = vk::Buffer(ctx, std::max<uint64_t>(numVertices_, 1) * sizeof(glm::vec4),
                             vk::kStorageUsage, vk::MemoryUse::Device, "vertices");

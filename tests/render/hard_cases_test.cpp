@@ -407,6 +407,25 @@ TEST(HardCases, DataSetsFarFromUnitSize) {
   }
 }
 
+// Points that no element uses (those of skipped line or surface cells, say) are not part of the
+// volume, however far they lie: one at 1e38 and one at 1e300, beyond float, leave the bounds, the
+// device frame and the image as they are without them (within the usual reference tolerance).
+TEST(HardCases, FarPointsNoElementUsesAreLeftOut) {
+  const RenderSettings s = cubeView(32);
+  auto m = ref::test::cubeMesh(Split::Tets5, 3);
+  auto f = smoothField(m, {0, 0, 0}, 1);
+  const scene::Image clean = test::renderReference(m, f, s);
+  const mesh::Bounds before = m.bounds();
+  m.points.push_back({1e38, 0.5, 0.5});
+  m.points.push_back({-1e300, 1e300, 0.5});
+  f.insert(f.end(), {1e30f, -1e30f});
+  EXPECT_EQ(m.bounds().lo, before.lo);
+  EXPECT_EQ(m.bounds().hi, before.hi);
+  auto g = test::renderOnGpu(m, f, s);
+  EXPECT_EQ(g.frame.counters.lostRays, 0u);
+  EXPECT_EQ(test::expectImagesClose("far_unused_points", clean, g.image).nanPixels, 0);
+}
+
 // Samples sit at t = k dt in float, and the samples of one walk are not bounded otherwise: a step
 // finer than the farthest corner's distance over 2^24 would repeat positions and, past 2^32
 // steps, wrap the device's sample index and never end. It is refused, naming --step; the finest
