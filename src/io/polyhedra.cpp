@@ -121,13 +121,15 @@ void VtuPolyhedra::readFaceArrays(const VtuDocument& doc, pugi::xml_node cells,
       throw FileError(src_, "polyhedron_to_faces: entry ", i, " is ", cellFaces_[i]);
     lastFace = std::max(lastFace, cellFaces_[i]);
   }
-  // Every face belongs to a polyhedron, so the faces are as many as the largest id says.
-  const std::vector<uint64_t> faceEnds = endOffsets(
-      toInt64(doc.decode(need("face_offsets"), uint64_t(lastFace) + 1, "face_offsets", 1), src_,
-              "face_offsets"),
-      src_, "face_offsets");
+  // The faces are at least as many as the largest id says; VTK reads faces no polyhedron lists
+  // (a writer's shared face list, one a filter left), and so do we.
+  const std::vector<uint64_t> faceEnds =
+      endOffsets(toInt64(doc.decode(need("face_offsets"), uint64_t(lastFace) + 1, "face_offsets", 1,
+                                    Length::AtLeast),
+                         src_, "face_offsets"),
+                 src_, "face_offsets");
   faceIds_ = toInt64(doc.decode(need("face_connectivity"), faceEnds.empty() ? 0 : faceEnds.back(),
-                                "face_connectivity", 1),
+                                "face_connectivity", 1, Length::AtLeast),
                      src_, "face_connectivity");
   faceBegin_.assign(1, 0);
   faceBegin_.insert(faceBegin_.end(), faceEnds.begin(), faceEnds.end());

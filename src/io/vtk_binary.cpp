@@ -20,28 +20,35 @@ uint64_t readHeaderValue(const uint8_t* p, const BinaryFormat& f) {
   return f.header64 ? loadAs<uint64_t>(p, f.swap) : loadAs<uint32_t>(p, f.swap);
 }
 
+// Whether an array's size fits what is expected of it.
+bool sizeFits(uint64_t declared, uint64_t expected, Length length) {
+  return declared == expected || (length == Length::AtLeast && declared > expected);
+}
+
 Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
-                         const std::string& source, const std::string& what) {
+                         const std::string& source, const std::string& what, Length length) {
   const uint64_t hs = f.header64 ? 8 : 4;
   ByteBuffer headerScratch;
   const uint8_t* h = src.take(hs, headerScratch);
   if (!h)
     throw FileError(source, what, ": ", src.whyShort("the data ends before the array's header"));
   const uint64_t declared = readHeaderValue(h, f);
-  if (declared != expected)
-    throw FileError(source, what, ": the array holds ", declared, " bytes, expected ", expected);
-  if (expected > src.maxRemaining())
-    throw FileError(source, what, ": needs ", expected, " bytes but the data ends after ",
+  if (!sizeFits(declared, expected, length))
+    throw FileError(source, what, ": the array holds ", declared, " bytes, expected ",
+                    length == Length::AtLeast ? "at least " : "", expected);
+  if (declared > src.maxRemaining())
+    throw FileError(source, what, ": needs ", declared, " bytes but the data ends after ",
                     src.maxRemaining());
   Payload p;
-  p.data = src.take(expected, p.storage);
+  p.bytes = declared;
+  p.data = src.take(declared, p.storage);
   if (!p.data)
     throw FileError(source, what, ": ", src.whyShort("the data ends before the array does"));
   return p;
 }
 
 Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
-                 const std::string& source, const std::string& what) {
+                 const std::string& source, const std::string& what, Length length) {
   const uint64_t hs = f.header64 ? 8 : 4;
   ByteBuffer scratch;
   const uint8_t* h = src.take(3 * hs, scratch);
@@ -63,8 +70,9 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
       throw FileError(source, what, ": the compression header claims an impossible size");
     total = (nBlocks - 1) * blockSize + (lastSize ? lastSize : blockSize);
   }
-  if (total != expected)
-    throw FileError(source, what, ": the array holds ", total, " bytes, expected ", expected);
+  if (!sizeFits(total, expected, length))
+    throw FileError(source, what, ": the array holds ", total, " bytes, expected ",
+                    length == Length::AtLeast ? "at least " : "", expected);
   ByteBuffer sizeScratch;
   const uint8_t* s = src.take(nBlocks * hs, sizeScratch);
   if (!s)
@@ -86,6 +94,7 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
   if (!comp)
     throw FileError(source, what, ": ", src.whyShort("the data ends inside the compressed blocks"));
   Payload p;
+  p.bytes = total;
   p.storage = ByteBuffer::allocate(total);
   p.data = p.storage.data();
   uint8_t* out = p.storage.data();
@@ -143,11 +152,11 @@ uint64_t PayloadSource::maxRemaining() const {
 }
 
 Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,
-                    const std::string& source, const std::string& what) {
+                    const std::string& source, const std::string& what, Length length) {
   throwIfStopped(format.stop, source);
   return format.compressor == Compressor::ZLib
-             ? readZlib(src, format, expectedBytes, source, what)
-             : readUncompressed(src, format, expectedBytes, source, what);
+             ? readZlib(src, format, expectedBytes, source, what, length)
+             : readUncompressed(src, format, expectedBytes, source, what, length);
 }
 
 std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level, unsigned threads,

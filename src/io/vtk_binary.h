@@ -56,13 +56,19 @@ class PayloadSource {
 struct Payload {
   const uint8_t* data = nullptr;
   ByteBuffer storage;
+  uint64_t bytes = 0;  // as its header says
 };
 
-// Reads one array (header and data, decompressing zlib blocks in parallel) that must hold exactly
-// expectedBytes. Every size in the header is checked against the data actually present before
-// anything is allocated; errors are sm::FileError(source, what, ...).
+// How many bytes an array may hold: exactly those expected, or those and more (VTK reads an array
+// by its own length; one listing entries nothing refers to is valid there).
+enum class Length { Exact, AtLeast };
+
+// Reads one array (header and data, decompressing zlib blocks in parallel) that must hold
+// expectedBytes (or, Length::AtLeast, no fewer). Every size in the header is checked against the
+// data actually present before anything is allocated; errors are sm::FileError(source, what, ...).
 Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,
-                    const std::string& source, const std::string& what);
+                    const std::string& source, const std::string& what,
+                    Length length = Length::Exact);
 
 // Writer side: `bytes` bytes, produced block by block by fill(offset, n, dst), as zlib blocks
 // of blockSize bytes with a UInt64 little-endian block table in front (VTK's layout).

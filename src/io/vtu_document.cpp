@@ -137,7 +137,7 @@ uint32_t VtuDocument::components(pugi::xml_node node, const std::string& what) c
 }
 
 NumericArray VtuDocument::decode(pugi::xml_node node, uint64_t tuples, const std::string& what,
-                                 uint32_t wantComponents) const {
+                                 uint32_t wantComponents, Length length) const {
   throwIfStopped(format_.stop, source_);
   std::string_view typeName = node.attribute("type").value();
   auto type = scalarTypeFromXml(typeName);
@@ -151,7 +151,7 @@ NumericArray VtuDocument::decode(pugi::xml_node node, uint64_t tuples, const std
   const uint64_t bytes = tuples * comps * size;
 
   std::string_view format = node.attribute("format").value();
-  if (format == "ascii") return decodeAscii(node, *type, comps, tuples, what);
+  if (format == "ascii") return decodeAscii(node, *type, comps, tuples, what, length);
   PayloadSource src = PayloadSource::raw({}, 0);
   if (format == "binary") {
     src = PayloadSource::base64(node.child_value(), 0);
@@ -166,7 +166,11 @@ NumericArray VtuDocument::decode(pugi::xml_node node, uint64_t tuples, const std
   } else {
     throw FileError(source_, what, ": unknown format '", printable(format), "'");
   }
-  Payload p = readPayload(src, format_, bytes, source_, what);
+  Payload p = readPayload(src, format_, bytes, source_, what, length);
+  if (p.bytes % (comps * size) != 0)
+    throw FileError(source_, what, ": holds ", p.bytes, " bytes, not a whole number of ", comps,
+                    "-component ", typeName, " tuples");
+  tuples = p.bytes / (comps * size);
   if (p.storage.data())
     return NumericArray::owned(*type, comps, tuples, std::move(p.storage), format_.swap);
   return NumericArray::view(*type, comps, tuples, p.data, format_.swap);
@@ -193,8 +197,17 @@ uint64_t VtuDocument::encodedDigest(pugi::xml_node node) const {
 }
 
 NumericArray VtuDocument::decodeAscii(pugi::xml_node node, ScalarType type, uint32_t comps,
-                                      uint64_t tuples, const std::string& what) const {
+                                      uint64_t tuples, const std::string& what,
+                                      Length length) const {
   std::string_view text = node.child_value();
+  if (length == Length::AtLeast) {  // as many whole tuples as the text holds
+    uint64_t values = 0;
+    for (TextCursor count(text); !count.token().empty();) ++values;
+    if (values % comps != 0)
+      throw FileError(source_, what, ": holds ", values, " values, not a whole number of ", comps,
+                      "-component tuples");
+    if (values / comps > tuples) tuples = values / comps;
+  }
   const uint64_t n = tuples * comps;
   if (n > maxNumbersInText(text.size()))
     throw FileError(source_, what, ": declares ", n, " values but its text holds at most ",

@@ -35,10 +35,11 @@ class VtuDocument {
   pugi::xml_node root() const { return doc_.document_element(); }
   const std::string& source() const { return source_; }
 
-  // Decodes a DataArray holding `tuples` tuples; `components` 0 accepts any count. The result
-  // views the file where the data is raw and uncompressed.
+  // Decodes a DataArray holding `tuples` tuples (Length::AtLeast: that many or more, all of them
+  // returned); `components` 0 accepts any count. The result views the file where the data is raw
+  // and uncompressed.
   NumericArray decode(pugi::xml_node dataArray, uint64_t tuples, const std::string& what,
-                      uint32_t components = 0) const;
+                      uint32_t components = 0, Length length = Length::Exact) const;
   // A digest of how a DataArray is stored: the file's format attributes, the array's attributes
   // and its encoded bytes (text, or appended bytes up to the next array's), none decoded. Arrays
   // with equal digests decode to the same values (equal values may be stored differently). 0 when
@@ -53,7 +54,7 @@ class VtuDocument {
   void parse(FileBytes& bytes, const char* type);
   void readFormat(pugi::xml_node root);
   NumericArray decodeAscii(pugi::xml_node node, ScalarType type, uint32_t comps, uint64_t tuples,
-                           const std::string& what) const;
+                           const std::string& what, Length length) const;
 
   std::string source_;
   std::string xmlCopy_;  // the XML part, when the file has appended data

@@ -8,6 +8,9 @@
 #include "io/base64.h"
 #include "io/text_scan.h"
 #include "io/vtk_binary.h"
+#include "io/vtu_arrays.h"
+#include "io/vtu_document.h"
+#include "io_test_util.h"
 
 namespace sm::io {
 namespace {
@@ -66,6 +69,52 @@ TEST(ZlibBlocks, RoundTripWithPartialAndFullLastBlocks) {
     EXPECT_TRUE(bytes == 0 || std::memcmp(p.data, raw.data(), bytes) == 0);
     PayloadSource again = PayloadSource::raw(enc, 0);
     EXPECT_THROW(readPayload(again, f, bytes + 1, "t.vtu", "array"), FileError);
+  }
+}
+
+// Length::AtLeast takes an array longer than expected whole (VTK reads an array by its own
+// length), raw and compressed alike; a shorter one is still refused.
+TEST(ZlibBlocks, AnArrayLongerThanExpectedIsReadWholeWhenAllowed) {
+  std::vector<uint8_t> raw(3000);
+  std::iota(raw.begin(), raw.end(), uint8_t(1));
+  std::vector<uint8_t> zlib = compressBlocks(
+      raw.size(), 1024, 1, 0,
+      [&](uint64_t b, uint64_t n, uint8_t* dst) { std::memcpy(dst, raw.data() + b, n); });
+  std::vector<uint8_t> plain(8);
+  const uint64_t size = raw.size();
+  std::memcpy(plain.data(), &size, 8);
+  plain.insert(plain.end(), raw.begin(), raw.end());
+  for (Compressor c : {Compressor::None, Compressor::ZLib}) {
+    const std::vector<uint8_t>& enc = c == Compressor::ZLib ? zlib : plain;
+    const BinaryFormat f{true, false, c, 0};
+    PayloadSource longer = PayloadSource::raw(enc, 0);
+    Payload p = readPayload(longer, f, 1000, "t.vtu", "array", Length::AtLeast);
+    EXPECT_EQ(p.bytes, raw.size());
+    EXPECT_EQ(std::memcmp(p.data, raw.data(), raw.size()), 0);
+    PayloadSource exact = PayloadSource::raw(enc, 0);
+    EXPECT_THROW(readPayload(exact, f, 1000, "t.vtu", "array"), FileError);
+    PayloadSource shorter = PayloadSource::raw(enc, 0);
+    EXPECT_THROW(readPayload(shorter, f, 3001, "t.vtu", "array", Length::AtLeast), FileError);
+  }
+}
+
+// The same through a document, in every encoding: a DataArray asked for with fewer tuples than it
+// holds comes back whole.
+TEST(VtuDocument, DecodesAtLeastTheTuplesAsked) {
+  for (const char* name : {"mesh_ascii.vtu", "mesh_binary_zlib_h32.vtu",
+                           "mesh_appended_raw_none_h64.vtu", "mesh_binary_none_h32.vtu"}) {
+    SCOPED_TRACE(name);
+    const std::string path = test::fixturePath(name);
+    FileBytes bytes = FileBytes::openLazily(path);
+    VtuDocument doc(bytes, path, "UnstructuredGrid");
+    const pugi::xml_node ids =
+        findDataArray(vtuPieces(doc).at(0).node.child("Cells"), "connectivity");
+    const NumericArray all = doc.decode(ids, 1, "connectivity", 1, Length::AtLeast);
+    ASSERT_GT(all.tuples, 1u);
+    EXPECT_EQ(toInt64(doc.decode(ids, all.tuples, "connectivity", 1), path, "c"),
+              toInt64(all, path, "c"));
+    EXPECT_THROW(doc.decode(ids, 1, "connectivity", 1), FileError);
+    EXPECT_THROW(doc.decode(ids, all.tuples + 1, "connectivity", 1, Length::AtLeast), FileError);
   }
 }
 

@@ -45,14 +45,16 @@ std::string streamArrays(const std::string& faces = kCubeFaces, const std::strin
          "</DataArray>";
 }
 
-std::string faceArrays(const std::string& cellEnds = "6 6") {
+// `extraFace`: one more face, listed by no polyhedron, at the end of the face arrays.
+std::string faceArrays(const std::string& cellEnds = "6 6", bool extraFace = false) {
   auto a = [](const char* name, const std::string& v) {
     return std::string("<DataArray type=\"Int64\" Name=\"") + name + "\" format=\"ascii\">" + v +
            "</DataArray>";
   };
-  return a("face_connectivity", "0 3 2 1 4 5 6 7 0 1 5 4 1 2 6 5 2 3 7 6 3 0 4 7") +
-         a("face_offsets", "4 8 12 16 20 24") + a("polyhedron_to_faces", "0 1 2 3 4 5") +
-         a("polyhedron_offsets", cellEnds);
+  return a("face_connectivity", std::string("0 3 2 1 4 5 6 7 0 1 5 4 1 2 6 5 2 3 7 6 3 0 4 7") +
+                                    (extraFace ? " 0 1 2" : "")) +
+         a("face_offsets", std::string("4 8 12 16 20 24") + (extraFace ? " 27" : "")) +
+         a("polyhedron_to_faces", "0 1 2 3 4 5") + a("polyhedron_offsets", cellEnds);
 }
 
 std::string legacy42() {
@@ -104,6 +106,7 @@ TEST(Polyhedra, EveryLayoutGivesTheSameTetrahedra) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"stream.vtu", vtuWith(streamArrays())},
       {"arrays.vtu", vtuWith(faceArrays())},
+      {"arrays_unused_face.vtu", vtuWith(faceArrays("6 6", true))},
       {"v42.vtk", legacy42()},
       {"v51.vtk", legacy51()}};
   std::vector<std::vector<double>> first;
