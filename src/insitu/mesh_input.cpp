@@ -61,9 +61,11 @@ uint64_t addPolyhedra(const IndexSpan& s, uint64_t firstElement, mesh::MeshBuild
     auto fail = [&](auto&&... what) {
       throw Error("setMesh: polyhedron ", count, " (polyhedra[", start, "]) ", what...);
     };
+    // Fewer than 4 faces cannot close: the builder skips such a cell with a warning, as readers
+    // do; only a stream that cannot be followed is an error.
     const int64_t numFaces = s[pos++];
-    if (numFaces < 4 || uint64_t(numFaces) > s.size() - pos)
-      fail("claims ", numFaces, " faces (at least 4, each 4 values or more, before the end)");
+    if (numFaces < 1 || uint64_t(numFaces) > s.size() - pos)
+      fail("claims ", numFaces, " faces (at least 1, each 4 values or more, before the end)");
     faces.ids.clear();
     faces.offsets.assign(1, 0);
     for (int64_t f = 0; f < numFaces; ++f) {

@@ -77,9 +77,24 @@ TEST_F(InsituErrors, MeshArrays) {
   const std::vector<int64_t> tet = {4, 3, 0, 2, 1, 3, 0, 1, 3, 3, 1, 2, 3, 3, 2, 0, 3};
   expectError(
       [&] {
-        withPolyhedra({3, 3, 0, 1, 2});
+        withPolyhedra({0, 3, 0, 1, 2});
       },
-      "setMesh: polyhedron 0 (polyhedra[0]) claims 3 faces");
+      "setMesh: polyhedron 0 (polyhedra[0]) claims 0 faces");
+  expectError(
+      [&] {
+        withPolyhedra({5, 3, 0, 1});
+      },
+      "setMesh: polyhedron 0 (polyhedra[0]) claims 5 faces");
+  // A cell whose faces do not close (three of the tetrahedron's four) is skipped, as files' are;
+  // the whole tetrahedron after it is kept.
+  std::vector<int64_t> open(tet.begin(), tet.begin() + 13);
+  open[0] = 3;
+  open.insert(open.end(), tet.begin(), tet.end());
+  const std::vector<int32_t> second(kTets.begin() + 4, kTets.end());
+  api::MeshView oneTet = twoTets(kPoints, second);
+  oneTet.polyhedra = open;
+  r.setMesh(oneTet);
+  EXPECT_EQ(r.stats().elements, 2u);
   std::vector<int64_t> bad = tet;
   bad[4] = 9;
   expectError([&] { withPolyhedra(bad); },
