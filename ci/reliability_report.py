@@ -385,7 +385,9 @@ def faults_section(md, rel, rel_path):
               "starts (`at=range-pass,action=close`): "
               "`ViewerHeadless.ClosingDuringANewFieldsRangePassStopsIt` must end before the pass "
               "reads a step, on one rank and on two (rank 1 learns of it through the pass's "
-              "collective).\n")
+              "collective); with `action=next-field` the field key is pressed then instead, and "
+              "`ViewerHeadless.TheFieldKeyDuringARangePassGoesOnWithoutIt` must go on to the "
+              "next field without reading a step of the one left.\n")
     md.append("Every output (PNG, cache, .vtu/.pvtu, statistics JSON) goes through "
               "`sm::writeFileAtomically`: written under `NAME.tmp.PID.N` and renamed when "
               "complete, so a name never holds a partial file. A process killed mid-write leaves"

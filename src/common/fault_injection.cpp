@@ -37,8 +37,8 @@ std::optional<Spec> parse(const char* text) {
     if (key == "at" &&
         (value == "frame" || value == "write" || value == "read-ahead" || value == "range-pass"))
       s.at = value;
-    else if (key == "action" &&
-             (value == "kill" || value == "throw" || value == "stall" || value == "close"))
+    else if (key == "action" && (value == "kill" || value == "throw" || value == "stall" ||
+                                 value == "close" || value == "next-field"))
       s.action = value;
     else if (key == "match")
       s.match = value;
@@ -47,15 +47,18 @@ std::optional<Spec> parse(const char* text) {
     else if (key == "frame" && number(value, n))
       s.frame = n;
     else
-      throw Error("SHELLMARCH_FAULT: cannot use '", item,
-                  "' (at=frame|write|read-ahead|range-pass, action=kill|throw|stall|close, rank=R, "
-                  "frame=N, match=TEXT)");
+      throw Error(
+          "SHELLMARCH_FAULT: cannot use '", item,
+          "' (at=frame|write|read-ahead|range-pass, action=kill|throw|stall|close|next-field, "
+          "rank=R, "
+          "frame=N, match=TEXT)");
   }
   if (s.at.empty() || s.action.empty()) throw Error("SHELLMARCH_FAULT: needs at= and action=");
   if ((s.action == "stall") != (s.at == "read-ahead"))
     throw Error("SHELLMARCH_FAULT: action=stall goes with at=read-ahead, and only it");
-  if ((s.action == "close") != (s.at == "range-pass"))
-    throw Error("SHELLMARCH_FAULT: action=close goes with at=range-pass, and only it");
+  if ((s.action == "close" || s.action == "next-field") != (s.at == "range-pass"))
+    throw Error(
+        "SHELLMARCH_FAULT: action=close or next-field goes with at=range-pass, and only it");
   return s;
 }
 
@@ -112,12 +115,16 @@ void atReadAhead(const std::function<bool()>& stopped) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
 }
 
-bool closeAtRangePass() {
+RangePassInput atRangePass() {
   const auto& s = spec();
-  if (!s || s->at != "range-pass" || (s->rank && *s->rank != processRank())) return false;
+  if (!s || s->at != "range-pass" || (s->rank && *s->rank != processRank()))
+    return RangePassInput::None;
   static bool announced = false;
-  if (!std::exchange(announced, true)) announce(*s, "in a range pass");
-  return true;
+  const bool first = !std::exchange(announced, true);
+  if (first) announce(*s, "in a range pass");
+  if (s->action == "close") return RangePassInput::Close;
+  // One key press, as a user's: pressed at every pass, it would skip every field for ever.
+  return first ? RangePassInput::NextField : RangePassInput::None;
 }
 
 }  // namespace sm::fault

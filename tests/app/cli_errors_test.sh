@@ -161,10 +161,12 @@ expect "SHELLMARCH_FAULT: action=stall goes with at=read-ahead" \
   env SHELLMARCH_FAULT=at=read-ahead,action=kill "$sm" render ok.pvtu --out a.png
 expect "SHELLMARCH_FAULT: action=stall goes with at=read-ahead" \
   env SHELLMARCH_FAULT=at=frame,frame=0,action=stall "$sm" render ok.pvtu --out a.png
-expect "SHELLMARCH_FAULT: action=close goes with at=range-pass" \
+expect "SHELLMARCH_FAULT: action=close or next-field goes with at=range-pass" \
   env SHELLMARCH_FAULT=at=range-pass,action=throw "$sm" render ok.pvtu --out a.png
-expect "SHELLMARCH_FAULT: action=close goes with at=range-pass" \
+expect "SHELLMARCH_FAULT: action=close or next-field goes with at=range-pass" \
   env SHELLMARCH_FAULT=at=write,action=close "$sm" render ok.pvtu --out a.png
+expect "SHELLMARCH_FAULT: action=close or next-field goes with at=range-pass" \
+  env SHELLMARCH_FAULT=at=frame,frame=0,action=next-field "$sm" render ok.pvtu --out a.png
 expect "SHELLMARCH_FAULT: cannot use 'at=bogus'" \
   env SHELLMARCH_FAULT=at=bogus,action=kill "$sm" render ok.pvtu --out a.png
 printf 'not a mesh' > garbage.vtu

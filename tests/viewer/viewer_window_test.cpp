@@ -361,6 +361,43 @@ TEST(ViewerHeadless, ClosingDuringANewFieldsRangePassStopsIt) {
   }
 }
 
+// The field key pressed while a new field's range pass reads its steps goes on to the next field
+// without waiting for the pass to finish: the fault presses it as the pass starts (once), so the
+// script's one f and the injected one end on the field two f's reach, having read only that
+// field's steps, on every rank.
+TEST(ViewerHeadless, TheFieldKeyDuringARangePassGoesOnWithoutIt) {
+  const std::string dir = outputDir("ViewerHeadless.RangePassSkipped");
+  const std::string mesh = generateTestMesh(dir);
+  const std::string twice = writeFile(dir, "twice.txt", "key f\nframe\nkey f\nframe\nquit\n");
+  CommandResult r = runCommand(headlessView(mesh, "32x24") + "--range 0,1 --script " + quote(twice),
+                               dir, "twice");
+  expectCleanRun(r);
+  const nlohmann::json reference = lastJson(r.out);
+  ASSERT_EQ(reference["range_steps_read"], 6);  // the new fields' three steps (--range: vortex's)
+  ASSERT_EQ(reference["range_passes_skipped"], 0);
+
+  const std::string once = writeFile(dir, "once.txt", "key f\nframe\nframe\nquit\n");
+  for (const char* launch : {"", "mpi"}) {
+    SCOPED_TRACE(*launch ? "2 ranks" : "1 rank");
+    const std::string command =
+        "SHELLMARCH_FAULT=at=range-pass,rank=0,action=next-field env -u DISPLAY -u "
+        "WAYLAND_DISPLAY " +
+        (*launch ? mpiexec() + " -n 2 --oversubscribe " : std::string()) + shellmarch() + " view " +
+        quote(mesh) +
+        " --field vortex --size 32x24 --headless --print-camera --range 0,1 --script " +
+        quote(once);
+    r = runCommand(command, dir, *launch ? "skipped-mpi" : "skipped");
+    expectCleanRun(r);
+    EXPECT_NE(r.err.find("next-field on rank 0 in a range pass"), std::string::npos) << r.err;
+    const nlohmann::json j = lastJson(r.out);
+    EXPECT_EQ(j["field"], reference["field"]);
+    EXPECT_EQ(j["range"], reference["range"]);
+    EXPECT_EQ(j["range_passes_skipped"], 1);
+    EXPECT_EQ(j["range_pass_stopped"], false);
+    EXPECT_EQ(j["range_steps_read"], 3);  // the skipped field's pass read none of its steps
+  }
+}
+
 // --fps holds each played step on screen for 1/F s at least (the viewer measures how long each
 // was shown, on the clock it paces by); input still acts at every frame, and without --fps play
 // never waits.

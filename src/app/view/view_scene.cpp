@@ -122,10 +122,10 @@ ViewState ViewScene::initialState(int width, int height, bool playing) const {
 }
 
 void ViewScene::selectField(int index) {
-  fieldIndex_ = index;
   std::optional<FieldInfo>& known = fields_.at(size_t(index));
-  if (!known)
+  if (!known)  // may throw RangePassStopped: the field shown stays as it was
     known = describeField(choices_.fields[size_t(index)], index == 0 ? job_.range : std::nullopt);
+  fieldIndex_ = index;
   field_ = *known;
   settings_.transferFunction.lo = field_.range.first;
   settings_.transferFunction.hi = field_.range.second;
@@ -169,7 +169,8 @@ FieldInfo ViewScene::describeField(const std::string& name,
   // that cycling through fields goes on.
   mesh::Range r;
   for (uint64_t step = 0; step < f.steps; ++step) {
-    if (coll_.max(interrupt_ && interrupt_() ? 1.0 : 0.0) > 0.0) throw RangePassStopped();
+    const double why = coll_.max(interrupt_ ? double(interrupt_()) : 0.0);
+    if (why > 0.0) throw RangePassStopped(PassInterrupt(int(why)));
     r.extend(source_->range(name, step));
     ++rangeStepsRead_;
   }

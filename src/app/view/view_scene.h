@@ -35,8 +35,13 @@ struct FieldInfo {
   std::pair<double, double> range{0.0, 1.0};  // over all its steps, all ranks
 };
 
+// What stops a new field's range pass: the viewer ending, or the user going on to another field.
+enum class PassInterrupt { None, FieldChange, Quit };
+
 // Thrown by ViewScene::render on every rank when its interrupt check stopped a range pass.
 struct RangePassStopped : std::exception {
+  PassInterrupt why = PassInterrupt::Quit;
+  explicit RangePassStopped(PassInterrupt w) : why(w) {}
   const char* what() const noexcept override { return "a field's range pass was stopped"; }
 };
 
@@ -76,8 +81,9 @@ class ViewScene {
   uint64_t stoppedReads() const { return loads_->stoppedReads(); }
   // Asked before each step a new field's range pass reads (every step of the field, on this
   // thread): once it says stop on any rank, render() throws RangePassStopped on every rank
-  // (collective). Rank 0 passes the window's close; the others need none.
-  void setInterrupt(std::function<bool()> interrupt) { interrupt_ = std::move(interrupt); }
+  // (collective), with the strongest reason any rank gave. Rank 0 passes the window's close and
+  // field key; the others need none. The field stays as it was before the pass.
+  void setInterrupt(std::function<PassInterrupt()> interrupt) { interrupt_ = std::move(interrupt); }
   uint64_t rangeStepsRead() const { return rangeStepsRead_; }
   double loadSeconds() const { return loadSeconds_; }
   double prepareSeconds() const { return prepareSeconds_; }
@@ -122,7 +128,7 @@ class ViewScene {
   int tableField_ = 0;  // the field the transfer function's opacity was made for
   scene::ScalarScale tableScale_ = scene::ScalarScale::Linear;  // and the scale
   std::set<int> linearWarned_;  // fields told that a log scale needs a positive range
-  std::function<bool()> interrupt_;
+  std::function<PassInterrupt()> interrupt_;
   uint64_t rangeStepsRead_ = 0;
 };
 

@@ -68,10 +68,11 @@ class Viewer {
   std::vector<glm::vec4> sparePixels_;  // the frame before's, handed to the next render
   int lastWidth_ = 0, lastHeight_ = 0;
   uint32_t framesShown_ = 0;
-  uint32_t reducedFrames_ = 0;     // frames rendered at a reduced size while the camera moved
-  ViewState shownState_;           // the state of the frame shown last
-  uint64_t stoppedReads_ = 0;      // reads ahead stopped unfinished (finish(): summed over ranks)
-  bool rangePassStopped_ = false;  // a close or quit came during a new field's range pass
+  uint32_t reducedFrames_ = 0;       // frames rendered at a reduced size while the camera moved
+  ViewState shownState_;             // the state of the frame shown last
+  uint64_t stoppedReads_ = 0;        // reads ahead stopped unfinished (finish(): summed over ranks)
+  bool rangePassStopped_ = false;    // a close or quit came during a new field's range pass
+  uint32_t rangePassesSkipped_ = 0;  // passes left for another field, the field key pressed
   bool quitPending_ = false;  // quit after the full-size frame that replaces a reduced last one
   double frameMs_ = 0, renderMs_ = 0, fragmentsPerPixel_ = 0;
   bool overlay_ = true;
@@ -108,7 +109,17 @@ Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Colle
     presenter_ = std::make_unique<Presenter>(*window_, scene_->context(), job.background);
     input_ = std::make_unique<InputHandler>(scene_->homeCamera(), scene_->choices());
     early_ = std::make_unique<EarlyInput>(*window_, script_);
-    scene_->setInterrupt([this] { return early_->quitArrived(); });
+    scene_->setInterrupt([this] {
+      switch (early_->interruptArrived()) {
+        case EarlyInput::Interrupt::Quit:
+          return PassInterrupt::Quit;
+        case EarlyInput::Interrupt::FieldChange:
+          return PassInterrupt::FieldChange;
+        case EarlyInput::Interrupt::None:
+          break;
+      }
+      return PassInterrupt::None;
+    });
   }
   state_ = scene_->initialState(job.width, job.height, options.play);
   log::info("view: loaded in ", scene_->loadSeconds(), " s, prepared in ", scene_->prepareSeconds(),
@@ -129,7 +140,11 @@ void Viewer::run() {
     render::FrameResult frame;
     try {
       frame = scene_->render(state_, std::move(sparePixels_));
-    } catch (const RangePassStopped&) {  // on every rank
+    } catch (const RangePassStopped& e) {  // on every rank
+      if (e.why == PassInterrupt::FieldChange) {
+        ++rangePassesSkipped_;  // the key is among the next frame's input
+        continue;
+      }
       rangePassStopped_ = true;
       break;
     }
@@ -361,6 +376,7 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["prefetched_steps"] = scene_->prefetchedSteps();
   j["stopped_reads"] = stoppedReads_;  // over all ranks
   j["range_pass_stopped"] = rangePassStopped_;
+  j["range_passes_skipped"] = rangePassesSkipped_;
   j["range_steps_read"] = scene_->rangeStepsRead();  // rank 0's
   j["scalar_wait_ms"] = scene_->scalarWaitMs();
   j["scalar_load_ms"] = scene_->scalarLoadMs();
