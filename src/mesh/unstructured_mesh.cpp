@@ -79,7 +79,10 @@ Bounds UnstructuredMesh::bounds() const {
   // mid-edge nodes) are left out: a stray far point must not shrink the view of the volume.
   std::vector<uint8_t> used(points.size(), 0);
   for (const auto& ids : cells)
-    for (uint32_t id : ids) used[id] = 1;
+    for (uint32_t id : ids) {
+      SM_CHECK_LT(id, points.size());  // builders check every id against the points
+      used[id] = 1;
+    }
   Bounds b;
   for (size_t i = 0; i < points.size(); ++i)
     if (used[i]) b.extend(points[i]);

@@ -91,7 +91,9 @@ struct UnstructuredMesh {
   uint64_t numCells(CellType t) const { return cells[typeIndex(t)].size() / numVerts(t); }
   uint64_t numCells() const;
   int32_t numClusters() const;  // 1 + largest cluster id; 0 for an empty mesh
-  Bounds bounds() const;        // of the points elements use (empty without elements)
+  // Of the points that elements use (empty without elements, so also once preparation has taken
+  // the cells).
+  Bounds bounds() const;
   const Field* findField(const std::string& name) const;
   uint64_t numSteps() const;  // most steps of any field
 };

@@ -14,13 +14,11 @@ constexpr VkBufferUsageFlags kAsInput =
     VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 }
 
-namespace {
-
-// Padded boxes of the shell triangles. The padding keeps rays that run exactly along a triangle's
-// plane or edge from being missed by the device's float box test; the exact test then decides.
 std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r) {
+  // From the shell's own vertices: a point no element uses may lie anywhere (up to FLT_MAX).
   float scale = 0.0f;
-  for (float p : r.positions) scale = std::max(scale, std::abs(p));
+  for (uint32_t v : r.shellIndices)
+    for (int k = 0; k < 3; ++k) scale = std::max(scale, std::abs(r.positions[3 * size_t(v) + k]));
   const float absolutePad = std::max(scale, 1e-30f) * 1e-6f;
   std::vector<VkAabbPositionsKHR> boxes(r.numShellTriangles());
   for (size_t t = 0; t < boxes.size(); ++t) {
@@ -37,8 +35,6 @@ std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r) {
   }
   return boxes;
 }
-
-}  // namespace
 
 GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeometry shell)
     : ctx_(ctx),

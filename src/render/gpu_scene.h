@@ -15,6 +15,12 @@
 
 namespace sm::render {
 
+// Padded boxes of the shell triangles (ShellGeometry::Boxes). The padding keeps rays that run
+// exactly along a triangle's plane or edge from being missed by the device's float box test; the
+// exact test then decides. It scales with the shell alone: points no element uses, however far,
+// leave the boxes tight.
+std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r);
+
 // How the shell BLAS holds the shell. Boxes: one padded box per shell triangle, every candidate
 // decided by the exact crossing predicates the marcher uses (exact everywhere, the default).
 // Triangles: the device's own triangle test decides (faster where RT cores test triangles, but a

@@ -4,6 +4,7 @@
 // significant fragment's depth within 1e-4 of the scene size.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,8 +14,10 @@
 
 #include "common/error.h"
 #include "mesh/mesh_builder.h"
+#include "prep/prepare.h"
 #include "ray_harness.h"
 #include "render/frame_defaults.h"
+#include "render/gpu_scene.h"
 #include "render_harness.h"
 #include "support/test_meshes.h"
 #include "test_meshes.h"
@@ -424,6 +427,12 @@ TEST(HardCases, FarPointsNoElementUsesAreLeftOut) {
   auto g = test::renderOnGpu(m, f, s);
   EXPECT_EQ(g.frame.counters.lostRays, 0u);
   EXPECT_EQ(test::expectImagesClose("far_unused_points", clean, g.image).nanPixels, 0);
+  // The shell's boxes stay as tight as the cube's (padded to ~1e-4 of a triangle): one stretched
+  // by a far point would make every ray test every shell triangle.
+  const prep::PreparedRank r =
+      prep::prepareRank(m, prep::makeGlobalFrame(m.bounds()), prep::PrepOptions{}).rank;
+  for (const VkAabbPositionsKHR& b : shellBoxes(r))
+    EXPECT_LT(std::max({b.maxX - b.minX, b.maxY - b.minY, b.maxZ - b.minZ}), 0.5f);
 }
 
 // Samples sit at t = k dt in float, and the samples of one walk are not bounded otherwise: a step
