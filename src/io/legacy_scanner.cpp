@@ -100,12 +100,12 @@ NumericArray LegacyScanner::data(std::string_view typeName, uint32_t comps, uint
   ScalarType stored = ScalarType::Int64;
   if (isFloatType(*type)) {
     stored = ScalarType::Float64;
-    scanNumbers(cur_, reinterpret_cast<double*>(buf.data()), n, src_, what);
+    scanNumbers(cur_, reinterpret_cast<double*>(buf.data()), n, src_, what, true);
   } else if (*type == ScalarType::UInt64) {
     stored = ScalarType::UInt64;
-    scanNumbers(cur_, reinterpret_cast<uint64_t*>(buf.data()), n, src_, what);
+    scanNumbers(cur_, reinterpret_cast<uint64_t*>(buf.data()), n, src_, what, true);
   } else {
-    scanNumbers(cur_, reinterpret_cast<int64_t*>(buf.data()), n, src_, what);
+    scanNumbers(cur_, reinterpret_cast<int64_t*>(buf.data()), n, src_, what, true);
   }
   return NumericArray::owned(stored, comps, tuples, std::move(buf), false);
 }

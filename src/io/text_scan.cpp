@@ -52,15 +52,15 @@ bool parseNumber(std::string_view token, double& out) {
 
 template <class T>
 void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& source,
-                 std::string_view what) {
+                 std::string_view what, bool sectioned) {
   for (uint64_t i = 0; i < n; ++i) {
     std::string_view tok = cursor.token();
     if (tok.empty())
       throw FileError(source, what, ": the text ends after ", i, " of ", n, " values");
     if (parseNumber(tok, out[i])) continue;
-    // A word here is most often the next section's keyword: the header promised more values.
-    if (std::all_of(tok.begin(), tok.end(),
-                    [](char c) { return std::isalpha(uint8_t(c)) || c == '_'; }))
+    // In a legacy file a word here is most often the next section's keyword.
+    if (sectioned && std::all_of(tok.begin(), tok.end(),
+                                 [](char c) { return std::isalpha(uint8_t(c)) || c == '_'; }))
       throw FileError(source, what, ": found '", printable(tok), "' after ", i, " of the ", n,
                       " values its header declares (the section holds fewer)");
     throw FileError(source, what, ": value ", i, " ('", printable(tok), "') is not a ",
@@ -69,10 +69,10 @@ void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& sour
 }
 
 template void scanNumbers<int64_t>(TextCursor&, int64_t*, uint64_t, const std::string&,
-                                   std::string_view);
+                                   std::string_view, bool);
 template void scanNumbers<uint64_t>(TextCursor&, uint64_t*, uint64_t, const std::string&,
-                                    std::string_view);
+                                    std::string_view, bool);
 template void scanNumbers<double>(TextCursor&, double*, uint64_t, const std::string&,
-                                  std::string_view);
+                                  std::string_view, bool);
 
 }  // namespace sm::io

@@ -44,9 +44,11 @@ bool parseNumber(std::string_view token, double& out);
 
 // Reads exactly n numbers into out; throws sm::FileError(source, what, ...) when a token is not
 // a number or the text ends early. Callers check that n is plausible for the text length first.
+// `sectioned`: the text is a legacy file's, where a word among the values is most often the next
+// section's keyword (the header declared more values than the section holds), and is named so.
 template <class T>
 void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& source,
-                 std::string_view what);
+                 std::string_view what, bool sectioned = false);
 
 // A token as it may appear in a one-line message: at most 40 characters, unprintable ones as '?'.
 std::string printable(std::string_view token);

@@ -4,7 +4,6 @@
 // of the binary arrays it needs (ascii ones are parsed); the mesh is built at the end.
 #include <algorithm>
 #include <cctype>
-#include <cstring>
 
 #include "common/error.h"
 #include "common/log.h"
@@ -191,7 +190,7 @@ class LegacyReader {
                key == "tensors6" || key == "texture_coordinates" || key == "color_scalars" ||
                key == "lookup_table" || key == "global_ids" || key == "pedigree_ids") {
       attribute(where_, key);
-    } else if (!in_.binary() && !key.empty() && std::strchr("0123456789+-.", key[0])) {
+    } else if (double v = 0; !in_.binary() && parseNumber(key, v)) {
       // A number where a keyword should be: the section before holds more than it declares.
       in_.fail(concat("found the number '", printable(key), "' where a keyword should be: ",
                       previous_.empty() ? std::string("the header")

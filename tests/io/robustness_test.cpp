@@ -156,6 +156,9 @@ TEST(Robustness, BrokenStructureInVtu) {
               "refers to appended data, but there is none");
   // A connectivity id beyond the points.
   expectError(replaced(ascii, "6 7 1 2 6 5", "6 70 1 2 6 5"), "a.vtu", "refers to point 70");
+  // A word among XML values is just not a number (no section keyword to blame, unlike legacy).
+  expectError(replaced(ascii, "6 7 1 2 6 5", "6 abc 1 2 6 5"), "a.vtu",
+              "('abc') is not a whole number");
   const std::string b64 = fixtureText("mesh_binary_zlib_h32.vtu");
   expectError(
       replaced(b64, "compressor=\"vtkZLibDataCompressor\"", "compressor=\"vtkZstdDataCompressor\""),
@@ -167,6 +170,10 @@ TEST(Robustness, BrokenStructureInVtu) {
               "point array 'pressure': '#', not base64, at character 13 of its base64 text");
   expectError(replaced(b64, "AQAAAIAAAAA0AAAALgAAAA==", "AQAAA=AAAAA0AAAALgAAAA=="), "b.vtu",
               "padding '=' out of place at character 16");
+  // Appended base64: counted from the array's own offset, not from the appended data's start.
+  expectError(
+      replaced(fixtureText("mesh_appended_b64_none_h32.vtu"), "==NAAAAAAAgD8A", "==NA#AAAAAgD8A"),
+      "c.vtu", "point array 'pressure': '#', not base64, at character 2 of its base64 text");
 }
 
 TEST(Robustness, AbsurdSizesInLegacyVtk) {
