@@ -74,15 +74,20 @@ int32_t UnstructuredMesh::numClusters() const {
   return m + 1;
 }
 
+std::vector<uint8_t> usedPoints(const UnstructuredMesh& m) {
+  std::vector<uint8_t> used(m.points.size(), 0);
+  for (const auto& ids : m.cells)
+    for (uint32_t id : ids) {
+      SM_CHECK_LT(id, m.points.size());  // builders check every id against the points
+      used[id] = 1;
+    }
+  return used;
+}
+
 Bounds UnstructuredMesh::bounds() const {
   // Points no element uses (those of skipped 2D, line and vertex cells, a quadratic cell's
   // mid-edge nodes) are left out: a stray far point must not shrink the view of the volume.
-  std::vector<uint8_t> used(points.size(), 0);
-  for (const auto& ids : cells)
-    for (uint32_t id : ids) {
-      SM_CHECK_LT(id, points.size());  // builders check every id against the points
-      used[id] = 1;
-    }
+  const std::vector<uint8_t> used = usedPoints(*this);
   Bounds b;
   for (size_t i = 0; i < points.size(); ++i)
     if (used[i]) b.extend(points[i]);

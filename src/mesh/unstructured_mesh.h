@@ -98,6 +98,9 @@ struct UnstructuredMesh {
   uint64_t numSteps() const;  // most steps of any field
 };
 
+// 1 for each point that an element uses, 0 for the others.
+std::vector<uint8_t> usedPoints(const UnstructuredMesh& m);
+
 // Scalar range of one step of a field, over finite values only.
 Range fieldRange(const Field& f, uint64_t step);
 Range fieldRange(const Field& f);  // all steps

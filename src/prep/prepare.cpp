@@ -16,13 +16,6 @@
 namespace sm::prep {
 namespace {
 
-std::vector<uint8_t> usedPoints(const mesh::UnstructuredMesh& mesh) {
-  std::vector<uint8_t> used(mesh.points.size(), 0);
-  for (const auto& ids : mesh.cells)
-    for (uint32_t v : ids) used[v] = 1;
-  return used;
-}
-
 // Rebased float positions in the global order; returns order (new -> old).
 std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
                                      std::vector<float>& positions) {
@@ -34,7 +27,7 @@ std::vector<uint32_t> orderAndRebase(mesh::UnstructuredMesh& mesh, const GlobalF
     // Readers accept any finite double; the device works in float around the frame's origin. A
     // point no element uses is never drawn (the frame leaves it out): it is kept, clamped.
     if (!(std::abs(p.x) <= FLT_MAX && std::abs(p.y) <= FLT_MAX && std::abs(p.z) <= FLT_MAX)) {
-      if (used.empty()) used = usedPoints(mesh);
+      if (used.empty()) used = mesh::usedPoints(mesh);
       if (used[order[i]])
         throw Error(mesh.source, ": point ", order[i], " is too far from the mesh's centre for ",
                     "single precision (coordinates must stay within 3.4e38 of it)");
