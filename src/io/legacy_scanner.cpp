@@ -90,10 +90,14 @@ NumericArray LegacyScanner::data(std::string_view typeName, uint32_t comps, uint
   }
   if (n > maxNumbersInText(cur_.remaining()))
     fail(concat(what, ": declares ", n, " values but the file is too short for them"));
-  if (!keep) {
-    for (uint64_t i = 0; i < n; ++i)
-      if (cur_.token().empty())
-        fail(concat(what, ": the file ends after ", i, " of ", n, " values"));
+  if (!keep) {  // skipped, not parsed; a word is still caught, as it ends the section early
+    for (uint64_t i = 0; i < n; ++i) {
+      const std::string_view tok = cur_.token();
+      if (tok.empty()) fail(concat(what, ": the file ends after ", i, " of ", n, " values"));
+      if (double v = 0; std::isalpha(uint8_t(tok[0])) && !parseNumber(tok, v))
+        fail(concat(what, ": found '", printable(tok), "' after ", i, " of the ", n,
+                    " values its header declares (the section holds fewer)"));
+    }
     return {};
   }
   ByteBuffer buf = ByteBuffer::allocate(std::max<uint64_t>(n, 1) * 8);

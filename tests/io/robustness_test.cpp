@@ -192,6 +192,9 @@ TEST(Robustness, AbsurdSizesInLegacyVtk) {
               "cells: found 'CELL_TYPES' after 49 of the 50 values");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 48"), "a.vtk",
               "where a keyword should be: the CELLS section holds more values");
+  // Also in an array that is skipped rather than read (cell data no --field names).
+  expectError(replaced(ascii, "0.85714285714 1", "0.85714285714"), "a.vtk",
+              "cell array 'quality': found 'METADATA' after 7 of the 8 values");
   expectError(replaced(ascii, "4 0 4 1 12", "4 0 4 1 13"), "a.vtk", "refers to point 13");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 9 49"), "a.vtk",
               "CELL_DATA 8 does not match the 9 cells");
