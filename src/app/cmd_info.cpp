@@ -130,10 +130,11 @@ void printText(std::ostream& out, const InfoOptions& o, const mesh::Unstructured
     clusters += concat(" (", *std::min_element(per.begin(), per.end()), " to ",
                        *std::max_element(per.begin(), per.end()), " cells each)");
   row("clusters", clusters);
+  // Of what renders: the points that elements use.
   const mesh::Bounds b = m.bounds();
-  if (!b.empty)
-    row("bounds", concat("x [", b.lo.x, ", ", b.hi.x, "]  y [", b.lo.y, ", ", b.hi.y, "]  z [",
-                         b.lo.z, ", ", b.hi.z, "]"));
+  row("bounds", b.empty ? std::string("none (no volume elements)")
+                        : concat("x [", b.lo.x, ", ", b.hi.x, "]  y [", b.lo.y, ", ", b.hi.y,
+                                 "]  z [", b.lo.z, ", ", b.hi.z, "]"));
   if (!m.timeValues.empty()) {
     std::string t;
     for (double v : m.timeValues) t += (t.empty() ? "" : ", ") + concat(v);

@@ -120,6 +120,16 @@ expect "cells.vtk: has no point fields to render; its cell data (pressure) is re
 if ! "$sm" info cells.vtu | grep -q "cell data  *pressure (--field NAME renders it"; then
   echo "FAIL: info does not list the cell data"; fails=$((fails + 1))
 fi
+# The bounds are those of what renders: a far point only a line uses is not in them, and a file of
+# surfaces alone has none.
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n0 0 0 1 0 0 0 1 0 0 0 1 1e38 0 0 0 0 0\nCELLS 3 12\n4 0 1 2 3\n2 3 4\n3 0 1 2\nCELL_TYPES 3\n10\n3\n5\n' > stray.vtk
+if ! "$sm" info stray.vtk 2>/dev/null | grep -q "bounds  *x \[0, 1\]  y \[0, 1\]  z \[0, 1\]$"; then
+  echo "FAIL: info's bounds include a point no element uses"; fails=$((fails + 1))
+fi
+printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n' > surface.vtk
+if ! "$sm" info surface.vtk 2>/dev/null | grep -q "bounds  *none (no volume elements)"; then
+  echo "FAIL: info on surfaces alone does not say there are no bounds"; fails=$((fails + 1))
+fi
 # A component of a vector field is a field when named (FORMATS.md; app.cell-data renders one).
 sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="v" NumberOfComponents="2"/;s/>0 1 2 3</>0 1 2 3 4 5 6 7</;}' forged.vtu > vec.vtu
 expect "vec.vtu: field 'v[2]': point array 'v' has 2 components" "$sm" render vec.vtu --field 'v[2]' --out a.png
