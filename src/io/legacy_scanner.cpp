@@ -94,9 +94,7 @@ NumericArray LegacyScanner::data(std::string_view typeName, uint32_t comps, uint
     for (uint64_t i = 0; i < n; ++i) {
       const std::string_view tok = cur_.token();
       if (tok.empty()) fail(concat(what, ": the file ends after ", i, " of ", n, " values"));
-      if (double v = 0; std::isalpha(uint8_t(tok[0])) && !parseNumber(tok, v))
-        fail(concat(what, ": found '", printable(tok), "' after ", i, " of the ", n,
-                    " values its header declares (the section holds fewer)"));
+      if (std::isalpha(uint8_t(tok[0]))) throwIfSectionEndsEarly(tok, i, n, src_, what);
     }
     return {};
   }

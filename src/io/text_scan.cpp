@@ -50,6 +50,15 @@ bool parseNumber(std::string_view token, double& out) {
   return parseWhole(std::string_view(buf, token.size()), out);
 }
 
+void throwIfSectionEndsEarly(std::string_view token, uint64_t read, uint64_t declared,
+                             const std::string& source, std::string_view what) {
+  if (double v = 0; token.empty() || parseNumber(token, v)) return;
+  if (std::all_of(token.begin(), token.end(),
+                  [](char c) { return std::isalpha(uint8_t(c)) || c == '_'; }))
+    throw FileError(source, what, ": found '", printable(token), "' after ", read, " of the ",
+                    declared, " values its header declares (the section holds fewer)");
+}
+
 template <class T>
 void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& source,
                  std::string_view what, bool sectioned) {
@@ -58,11 +67,7 @@ void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& sour
     if (tok.empty())
       throw FileError(source, what, ": the text ends after ", i, " of ", n, " values");
     if (parseNumber(tok, out[i])) continue;
-    // In a legacy file a word here is most often the next section's keyword.
-    if (sectioned && std::all_of(tok.begin(), tok.end(),
-                                 [](char c) { return std::isalpha(uint8_t(c)) || c == '_'; }))
-      throw FileError(source, what, ": found '", printable(tok), "' after ", i, " of the ", n,
-                      " values its header declares (the section holds fewer)");
+    if (sectioned) throwIfSectionEndsEarly(tok, i, n, source, what);
     throw FileError(source, what, ": value ", i, " ('", printable(tok), "') is not a ",
                     std::is_floating_point_v<T> ? "number" : "whole number");
   }

@@ -50,6 +50,13 @@ template <class T>
 void scanNumbers(TextCursor& cursor, T* out, uint64_t n, const std::string& source,
                  std::string_view what, bool sectioned = false);
 
+// In a legacy file, a word where a section's values should be: most often the next section's
+// keyword, the header having declared more values than the section holds. Throws
+// sm::FileError(source, what, ...) saying so when `token` is a word (not a number), after
+// `read` of `declared` values.
+void throwIfSectionEndsEarly(std::string_view token, uint64_t read, uint64_t declared,
+                             const std::string& source, std::string_view what);
+
 // A token as it may appear in a one-line message: at most 40 characters, unprintable ones as '?'.
 std::string printable(std::string_view token);
 

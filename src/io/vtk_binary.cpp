@@ -20,9 +20,12 @@ uint64_t readHeaderValue(const uint8_t* p, const BinaryFormat& f) {
   return f.header64 ? loadAs<uint64_t>(p, f.swap) : loadAs<uint32_t>(p, f.swap);
 }
 
-// Whether an array's size fits what is expected of it.
-bool sizeFits(uint64_t declared, uint64_t expected, Length length) {
-  return declared == expected || (length == Length::AtLeast && declared > expected);
+// Refuses an array whose header gives a size other than the one expected of it.
+void checkSize(uint64_t declared, uint64_t expected, Length length, const std::string& source,
+               const std::string& what) {
+  if (declared == expected || (length == Length::AtLeast && declared > expected)) return;
+  throw FileError(source, what, ": the array holds ", declared, " bytes, expected ",
+                  length == Length::AtLeast ? "at least " : "", expected);
 }
 
 Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
@@ -33,9 +36,7 @@ Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t exp
   if (!h)
     throw FileError(source, what, ": ", src.whyShort("the data ends before the array's header"));
   const uint64_t declared = readHeaderValue(h, f);
-  if (!sizeFits(declared, expected, length))
-    throw FileError(source, what, ": the array holds ", declared, " bytes, expected ",
-                    length == Length::AtLeast ? "at least " : "", expected);
+  checkSize(declared, expected, length, source, what);
   if (declared > src.maxRemaining())
     throw FileError(source, what, ": needs ", declared, " bytes but the data ends after ",
                     src.maxRemaining());
@@ -70,9 +71,7 @@ Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
       throw FileError(source, what, ": the compression header claims an impossible size");
     total = (nBlocks - 1) * blockSize + (lastSize ? lastSize : blockSize);
   }
-  if (!sizeFits(total, expected, length))
-    throw FileError(source, what, ": the array holds ", total, " bytes, expected ",
-                    length == Length::AtLeast ? "at least " : "", expected);
+  checkSize(total, expected, length, source, what);
   ByteBuffer sizeScratch;
   const uint8_t* s = src.take(nBlocks * hs, sizeScratch);
   if (!s)

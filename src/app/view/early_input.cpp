@@ -14,7 +14,7 @@ bool isQuit(const InputEvent& e) {
 
 }  // namespace
 
-EarlyInput::Interrupt EarlyInput::interruptArrived() {
+PassInterrupt EarlyInput::interruptArrived() {
   const size_t before = early_.size();
   window_.poll(early_);
   const fault::RangePassInput injected = fault::atRangePass();
@@ -26,7 +26,9 @@ EarlyInput::Interrupt EarlyInput::interruptArrived() {
   fieldChange_ = fieldChange_ || std::any_of(arrived, early_.end(), [](const InputEvent& e) {
                    return e.type == InputEvent::Type::KeyPress && e.key == Key::NextField;
                  });
-  return quit_ ? Interrupt::Quit : fieldChange_ ? Interrupt::FieldChange : Interrupt::None;
+  return quit_          ? PassInterrupt::Quit
+         : fieldChange_ ? PassInterrupt::FieldChange
+                        : PassInterrupt::None;
 }
 
 bool EarlyInput::takeFrame(std::vector<InputEvent>& events) {

@@ -10,6 +10,7 @@
 
 #include "app/view/input.h"
 #include "app/view/script.h"
+#include "app/view/view_state.h"
 #include "app/view/window.h"
 
 namespace sm::view {
@@ -20,8 +21,7 @@ class EarlyInput {
 
   // What has arrived that ends a range pass: a close or quit (the viewer ends), else a press of
   // the field key (the next frame shows another field; the pass's field is not waited for).
-  enum class Interrupt { None, FieldChange, Quit };
-  Interrupt interruptArrived();
+  PassInterrupt interruptArrived();
   // The next frame's input: what arrived early, then the window's, then the script's. Returns
   // Script::nextFrame's answer (false once the script is over).
   bool takeFrame(std::vector<InputEvent>& events);

@@ -35,9 +35,6 @@ struct FieldInfo {
   std::pair<double, double> range{0.0, 1.0};  // over all its steps, all ranks
 };
 
-// What stops a new field's range pass: the viewer ending, or the user going on to another field.
-enum class PassInterrupt { None, FieldChange, Quit };
-
 // Thrown by ViewScene::render on every rank when its interrupt check stopped a range pass.
 struct RangePassStopped : std::exception {
   PassInterrupt why = PassInterrupt::Quit;

@@ -16,6 +16,10 @@
 
 namespace sm::view {
 
+// What stops a new field's range pass: the viewer ending, or the user going on to another field
+// (ordered: ranks agree on the strongest with a max).
+enum class PassInterrupt { None, FieldChange, Quit };
+
 struct ViewState {
   glm::dvec3 eye{0, 0, 1}, at{0, 0, 0}, up{0, 0, 1};
   double fovyDeg = 30.0;

@@ -109,17 +109,7 @@ Viewer::Viewer(const app::RenderJob& job, const ViewOptions& options, app::Colle
     presenter_ = std::make_unique<Presenter>(*window_, scene_->context(), job.background);
     input_ = std::make_unique<InputHandler>(scene_->homeCamera(), scene_->choices());
     early_ = std::make_unique<EarlyInput>(*window_, script_);
-    scene_->setInterrupt([this] {
-      switch (early_->interruptArrived()) {
-        case EarlyInput::Interrupt::Quit:
-          return PassInterrupt::Quit;
-        case EarlyInput::Interrupt::FieldChange:
-          return PassInterrupt::FieldChange;
-        case EarlyInput::Interrupt::None:
-          break;
-      }
-      return PassInterrupt::None;
-    });
+    scene_->setInterrupt([this] { return early_->interruptArrived(); });
   }
   state_ = scene_->initialState(job.width, job.height, options.play);
   log::info("view: loaded in ", scene_->loadSeconds(), " s, prepared in ", scene_->prepareSeconds(),
