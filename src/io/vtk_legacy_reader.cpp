@@ -39,8 +39,9 @@ class LegacyReader {
     readHeader();
     for (std::string_view w = in_.token(); !w.empty(); w = in_.token()) {
       throwIfStopped(options_.stopRequested, src_);
+      lastArray_.clear();
       section(lowerCase(w));
-      previous_ = w;
+      previous_ = lastArray_.empty() ? concat("the ", printable(w), " section") : lastArray_;
     }
     throwIfStopped(options_.stopRequested, src_);
     return build();
@@ -87,6 +88,7 @@ class LegacyReader {
     const uint64_t tuples = where == Where::Cells ? numCells_ : numPoints_;
     bool keep = where == Where::Points ? options_.loadFields : keepCellArray(name);
     NumericArray a = in_.data(type, comps, tuples, what, keep);
+    lastArray_ = what;
     if (!a.data) {
       if (where == Where::Cells) cellArrays_.push_back({std::move(name), identifier, {}});
       return;
@@ -103,6 +105,9 @@ class LegacyReader {
       if (in_.atEnd()) in_.fail(concat("FIELD: the file ends before array ", i));
       TextCursor fields(in_.line());
       std::string_view first = fields.token();
+      if (double v = 0; !lastArray_.empty() && !in_.binary() && parseNumber(first, v))
+        in_.fail(concat("FIELD: found the number '", printable(first), "' where array ", i,
+                        "'s name should be: ", lastArray_, " holds more values than it declares"));
       if (lowerCase(first) == "null_array") continue;
       std::string name = decodeVtkName(first);
       const uint64_t comps = in_.count(fields.token(), "component count");
@@ -112,8 +117,8 @@ class LegacyReader {
         in_.fail(concat("array '", name, "' has ", comps, " components"));
       if (where == Where::Dataset) {
         bool time = isTimeValuesArray(name);
-        NumericArray a =
-            in_.data(type, uint32_t(comps), tuples, concat("field data '", name, "'"), time);
+        lastArray_ = concat("field data '", name, "'");
+        NumericArray a = in_.data(type, uint32_t(comps), tuples, lastArray_, time);
         if (time && a.data) timeValues_ = std::move(a);
       } else {
         const uint64_t expected = where == Where::Cells ? numCells_ : numPoints_;
@@ -193,8 +198,7 @@ class LegacyReader {
     } else if (double v = 0; !in_.binary() && parseNumber(key, v)) {
       // A number where a keyword should be: the section before holds more than it declares.
       in_.fail(concat("found the number '", printable(key), "' where a keyword should be: ",
-                      previous_.empty() ? std::string("the header")
-                                        : concat("the ", printable(previous_), " section"),
+                      previous_.empty() ? std::string("the header") : previous_,
                       " holds more values than it declares"));
     } else {
       in_.fail(concat("unknown keyword '", printable(key), "'"));
@@ -237,7 +241,9 @@ class LegacyReader {
   LegacyScanner in_;
   bool newLayout_ = false, haveCells_ = false, haveTypes_ = false;
   Where where_ = Where::Dataset;
-  std::string previous_;  // the keyword of the section read last, for messages
+  // What was read last, for messages: "the CELLS section", or the array a FIELD or attribute
+  // section ended with, since a count one off there is the array's and not the section's.
+  std::string previous_, lastArray_;
   uint64_t numPoints_ = 0, numCells_ = 0;
   GhostCells ghostCells_;
   NumericArray points_, conn_, offsets_, types_, timeValues_;

@@ -195,6 +195,21 @@ TEST(Robustness, AbsurdSizesInLegacyVtk) {
   // Also in an array that is skipped rather than read (cell data no --field names).
   expectError(replaced(ascii, "0.85714285714 1", "0.85714285714"), "a.vtk",
               "cell array 'quality': found 'METADATA' after 7 of the 8 values");
+  // A value too many in an array names the array, not the FIELD or SCALARS section around it.
+  expectError(replaced(ascii, "0.85714285714 1 \n", "0.85714285714 1 2\n"), "a.vtk",
+              "found the number '2' where a keyword should be: cell array 'quality' holds more "
+              "values than it declares");
+  expectError(replaced(ascii, "0 0.25 1 \n", "0 0.25 1 7\n"), "a.vtk",
+              "found the number '7' where a keyword should be: field data 'TimeValues' holds");
+  expectError(replaced(ascii, "5.5 6 6.5 7 \n", "5.5 6 6.5 7 8\n"), "a.vtk",
+              "found the number '8' where a keyword should be: point array 'pressure' holds");
+  // Within a FIELD of two arrays the extra value stands where the next array's name should.
+  expectError(
+      replaced(replaced(ascii, "FIELD FieldData 1\nquality", "FIELD FieldData 2\nquality"),
+               "0.85714285714 1 \n", "0.85714285714 1 9\nother 1 8 double\n1 2 3 4 5 6 7 8\n"),
+      "a.vtk",
+      "FIELD: found the number '9' where array 1's name should be: cell array 'quality' "
+      "holds more values than it declares");
   expectError(replaced(ascii, "4 0 4 1 12", "4 0 4 1 13"), "a.vtk", "refers to point 13");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 9 49"), "a.vtk",
               "CELL_DATA 8 does not match the 9 cells");
