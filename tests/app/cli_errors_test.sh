@@ -130,6 +130,9 @@ printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 
 if ! "$sm" info surface.vtk 2>/dev/null | grep -q "bounds  *none (no volume elements)"; then
   echo "FAIL: info on surfaces alone does not say there are no bounds"; fails=$((fails + 1))
 fi
+if ! "$sm" info surface.vtk --json 2>/dev/null | grep -q '"bounds": null'; then
+  echo "FAIL: info --json on surfaces alone does not give null bounds"; fails=$((fails + 1))
+fi
 # A component of a vector field is a field when named (FORMATS.md; app.cell-data renders one).
 sed -e '/Name="f&#10;/{s/Name="[^"]*"/Name="v" NumberOfComponents="2"/;s/>0 1 2 3</>0 1 2 3 4 5 6 7</;}' forged.vtu > vec.vtu
 expect "vec.vtu: field 'v[2]': point array 'v' has 2 components" "$sm" render vec.vtu --field 'v[2]' --out a.png
