@@ -223,7 +223,14 @@ RankShare readWhole(const std::string& path, const ShareOptions& o, bool cellDat
     s.mesh = std::move(whole);
     if (streamCells) averageFirstCellSteps(s, o.read.fields, coll);
   } else {
-    partition::ExtractedClusters mine = partition::extractClustersWithPointMap(whole, s.clusters);
+    // The points no element uses (a quadratic cell's mid-edge nodes, a skipped cell's) go to the
+    // rank of the first cluster with elements: ranges then count them on any number of ranks,
+    // as they do on one.
+    const auto first = std::find_if(sizes.begin(), sizes.end(), [](uint64_t n) { return n > 0; });
+    const bool strays =
+        first != sizes.end() && toRank[size_t(first - sizes.begin())] == coll.rank();
+    partition::ExtractedClusters mine =
+        partition::extractClustersWithPointMap(whole, s.clusters, strays);
     if (s.stream)
       s.stream->filePoints = composePointMaps(whole.pointOrigin, std::move(mine.originalPoint));
     s.mesh = std::move(mine.mesh);

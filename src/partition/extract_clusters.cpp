@@ -13,7 +13,8 @@ using mesh::CellType;
 using mesh::UnstructuredMesh;
 
 ExtractedClusters extractClustersWithPointMap(const UnstructuredMesh& mesh,
-                                              const std::vector<int>& clusters) {
+                                              const std::vector<int>& clusters,
+                                              bool keepUnusedPoints) {
   const int32_t numClusters = mesh.numClusters();
   std::vector<char> wanted(std::max(numClusters, 0), 0);
   for (int c : clusters)
@@ -34,6 +35,12 @@ ExtractedClusters extractClustersWithPointMap(const UnstructuredMesh& mesh,
       keep[ti][e] = 1;
       for (uint32_t k = 0; k < nv; ++k) newIndex[ids[e * nv + k]] = 0;
     }
+  }
+
+  if (keepUnusedPoints) {
+    const std::vector<uint8_t> used = mesh::usedPoints(mesh);
+    for (size_t p = 0; p < used.size(); ++p)
+      if (!used[p]) newIndex[p] = 0;
   }
 
   // Points in their original order.

@@ -38,7 +38,11 @@ struct ExtractedClusters {
   mesh::UnstructuredMesh mesh;
   std::vector<uint32_t> originalPoint;
 };
+// With keepUnusedPoints, the points that no element of `mesh` uses come along too (in their
+// place in point order): the one share that takes them keeps their field values, so that the
+// ranges over all shares count every point, as the whole mesh's do.
 ExtractedClusters extractClustersWithPointMap(const mesh::UnstructuredMesh& mesh,
-                                              const std::vector<int>& clusters);
+                                              const std::vector<int>& clusters,
+                                              bool keepUnusedPoints = false);
 
 }  // namespace sm::partition

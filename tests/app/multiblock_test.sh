@@ -42,4 +42,21 @@ for n in 1 3; do
       fail ".vtm.series frame $k on $n rank(s) is not the .pvtu's"
   done
 done
+
+# Points no element uses (here one only a line uses, as a quadratic cell's mid-edge nodes are)
+# count in the default range on any number of ranks: a file read whole and split among ranks keeps
+# them on one rank, so 2 ranks render what 1 does, and both what the range through them gives.
+{
+  printf '# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 13 double\n'
+  printf '0 0 0 1 0 0 2 0 0 0 1 0 1 1 0 2 1 0 0 0 1 1 0 1 2 0 1 0 1 1 1 1 1 2 1 1 0.5 0.5 0.5\n'
+  printf 'CELLS 3 21\n8 0 1 4 3 6 7 10 9\n8 1 2 5 4 7 8 11 10\n2 0 12\nCELL_TYPES 3\n12\n12\n3\n'
+  printf 'CELL_DATA 3\nSCALARS cluster int\nLOOKUP_TABLE default\n0 1 0\n'
+  printf 'POINT_DATA 13\nSCALARS f float\nLOOKUP_TABLE default\n0 0.1 0.2 0 0.1 0.2 0 0.1 0.2 0 0.1 0.2 100\n'
+} > stray.vtk
+plain=(--size 48x40 --view iso --colormap viridis)
+mpi 1 "$sm" render stray.vtk "${plain[@]}" --out stray1.pfm 2>/dev/null
+mpi 2 "$sm" render stray.vtk "${plain[@]}" --out stray2.pfm 2>/dev/null
+"$sm" render stray.vtk "${plain[@]}" --range 0,100 --out stray-range.pfm 2>/dev/null
+cmp stray1.pfm stray-range.pfm || fail "1 rank's default range leaves out a point no element uses"
+cmp stray1.pfm stray2.pfm || fail "2 ranks' default range is not 1 rank's (a point no element uses)"
 echo "multiblock: all checks passed"
