@@ -1,6 +1,7 @@
 #include "app/cli_checks.h"
 
 #include <filesystem>
+#include <set>
 #include <string>
 
 namespace sm::app {
@@ -23,6 +24,27 @@ CLI::Validator writableFile() {
         return {};
       },
       "FILE");
+}
+
+namespace {
+std::set<const CLI::Option*>& emptyAllowed() {
+  static std::set<const CLI::Option*> options;
+  return options;
+}
+}  // namespace
+
+CLI::Option* allowEmptyValue(CLI::Option* option) {
+  emptyAllowed().insert(option);
+  return option;
+}
+
+void refuseEmptyValues(const CLI::App& app) {
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->count() == 0 || o->get_type_size() == 0 || emptyAllowed().count(o)) continue;  // flags
+    for (const std::string& r : o->results())
+      if (r.empty()) throw CLI::ValidationError(o->get_name(), "must not be empty");
+  }
+  for (const CLI::App* sub : app.get_subcommands()) refuseEmptyValues(*sub);
 }
 
 }  // namespace sm::app

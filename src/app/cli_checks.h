@@ -11,4 +11,11 @@ namespace sm::app {
 CLI::Validator nonEmptyName();
 CLI::Validator writableFile();
 
+// Marks an option whose empty value means something (bench --exact "": no such runs).
+CLI::Option* allowEmptyValue(CLI::Option* option);
+
+// Refuses an empty value ("--range ''", "--step=") of every option of the subcommands given that
+// takes one, but those marked above: an unset shell variable must not quietly mean the default.
+void refuseEmptyValues(const CLI::App& app);
+
 }  // namespace sm::app

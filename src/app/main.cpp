@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "common/error.h"
 #include "common/log.h"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "More messages");
   app.add_flag("-q,--quiet", quiet, "Errors only");
   app.parse_complete_callback([&] {
+    sm::app::refuseEmptyValues(app);
     if (verbose) sm::log::setLevel(sm::log::Level::Info);
     if (quiet) sm::log::setLevel(sm::log::Level::Quiet);
   });
@@ -58,6 +60,14 @@ int main(int argc, char** argv) {
   sm::app::registerBench(app);
   sm::app::registerView(app);
   try {
+    // "--opacity=" would otherwise take the next argument's place in CLI11 and be reported as
+    // that argument being unexpected.
+    for (int i = 1; i < argc; ++i) {
+      const std::string_view a = argv[i];
+      if (a == "--") break;
+      if (a.size() > 3 && a.rfind("--", 0) == 0 && a.back() == '=' && a.find('=') == a.size() - 1)
+        throw CLI::ValidationError(std::string(a.substr(0, a.size() - 1)), "must not be empty");
+    }
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

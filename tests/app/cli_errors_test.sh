@@ -45,7 +45,7 @@ expect "--time: '18446744073709551616'" "$sm" render ok.pvtu --time 184467440737
 expect "--cube-n: 1000 makes 6000000000 cells" "$sm" generate --analytic cube-tets6 --cube-n 1000 --out big.pvtu
 expect "--cube-n: 465 makes 100544625 cells" "$sm" generate --analytic cube-hex --cube-n 465 --out big.pvtu
 expect "ok_0.vtu: has no pieces to choose from" "$sm" info ok/ok_0.vtu --pieces 0
-expect "--meshes: empty entry in ''" "$sm" bench accuracy --meshes '' --work-dir acc
+usage "--meshes: must not be empty" "$sm" bench accuracy --meshes '' --work-dir acc
 expect "--meshes: empty entry in 'demo,,lander'" "$sm" bench accuracy --meshes demo,,lander --work-dir acc
 if [ -e acc ]; then echo "FAIL: bench accuracy made its work folder for nothing"; fails=$((fails + 1)); fi
 # A piece that is itself a .pvtu index: named when render sizes the pieces, before any reading.
@@ -159,6 +159,13 @@ expect "ok.pvtu: its pieces are its clusters; a cluster array ('x')" "$sm" rende
 expect "--clusters and --cluster-array: give one" "$sm" render ok.pvtu --cluster-array x --clusters 2 --out a.png
 usage "--field: must not be empty" "$sm" render ok.pvtu --field '' --out a.png
 usage "--device: must not be empty" "$sm" render ok.pvtu --device '' --out a.png
+# Every option that takes a value refuses an empty one (an unset shell variable), in either form;
+# bench's --exact '' means "no such runs" and stays allowed.
+usage "--range: must not be empty" "$sm" render ok.pvtu --range '' --out a.png
+usage "--step: must not be empty" "$sm" render ok.pvtu --step '' --out a.png
+usage "--opacity: must not be empty" "$sm" render ok.pvtu --opacity= --out a.png
+usage "--eye: must not be empty" "$sm" view ok.pvtu --headless --eye '' --script s.txt
+usage "--sizes: must not be empty" "$sm" bench render --sizes '' --exact ''
 # No Vulkan driver at all (the loader finds none to load): said in words, not as a raw VkResult.
 # Without validation, whose messenger would add the loader's own lines.
 expect "no Vulkan driver could be loaded" env -u SHELLMARCH_VALIDATION VK_DRIVER_FILES=/nonexistent/icd.json \

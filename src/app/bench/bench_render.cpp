@@ -286,13 +286,15 @@ void configureRenderBench(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--sizes", a->sizes, "Image sizes: N (square) or WxH, comma separated")
       ->capture_default_str();
-  cmd.add_option(
-         "--coarser", a->coarser,
-         "Also render compacted at the step times these (speed at equal error; '' for none)")
-      ->capture_default_str();
-  cmd.add_option("--exact", a->exact,
-                 "Element-exact runs at the step times these, comma separated (empty: none)")
-      ->capture_default_str();
+  allowEmptyValue(
+      cmd.add_option(
+             "--coarser", a->coarser,
+             "Also render compacted at the step times these (speed at equal error; '' for none)")
+          ->capture_default_str());
+  allowEmptyValue(
+      cmd.add_option("--exact", a->exact,
+                     "Element-exact runs at the step times these, comma separated (empty: none)")
+          ->capture_default_str());
   cmd.add_option("--runs", a->runs, "Warm shellmarch frames per case (after one cold frame)")
       ->capture_default_str();
   cmd.add_option("--vtk-runs", a->vtkRuns, "Warm VTK frames per case")->capture_default_str();
