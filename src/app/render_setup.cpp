@@ -135,6 +135,9 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
                 finest * 0x1p24, "): move the eye closer or give --step of at least ", finest);
   // Checked here against the whole data set too, so that every rank refuses the step alike.
   render::checkStep(s.dt, s.camera.eye, share.wholeBounds);
+  // Element-exact integration takes no samples, so any step gives the same image there.
+  if (job.integration == render::Integration::Sampled)
+    render::checkStepNotBeyondData(s.dt, share.wholeBounds);
   s.earlyTermination = job.earlyTermination;
   s.integration = job.integration;
   s.shading = job.shading;

@@ -104,6 +104,7 @@ render::RenderSettings toRenderSettings(const api::RenderSettings& s, const Mesh
     throw Error("render: the mesh is flat (zero volume); give sampleDistance and unitDistance");
   // Here, with the whole mesh's bounds, so that every rank refuses it alike (an agreed error).
   render::checkStep(r.dt, r.camera.eye, frame.whole, "render: sampleDistance");
+  render::checkStepNotBeyondData(r.dt, frame.whole, "render: sampleDistance");
   r.earlyTermination = s.earlyTermination;
   for (const api::ClipPlane& c : s.clipPlanes)
     r.clipPlanes.push_back(

@@ -46,4 +46,13 @@ void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b, const ch
                 "(the data reaches ", finest * 0x1p24, " from the eye); use at least ", finest);
 }
 
+void checkStepNotBeyondData(double dt, const mesh::Bounds& b, const char* option) {
+  if (b.empty) return;
+  const double diagonal = b.diagonal();
+  if (dt > diagonal)
+    throw Error(option, ": ", dt, " is longer than the data's diagonal (", diagonal,
+                "): most rays would take no sample and the image would be empty; use at most ",
+                diagonal);
+}
+
 }  // namespace sm::render

@@ -33,4 +33,8 @@ double finestStep(const glm::dvec3& eye, const mesh::Bounds& b);
 void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b,
                const char* option = "--step");
 
+// Throws naming `option` when sampling at `dt` would leave most rays without a sample: a step
+// longer than the diagonal of bounds b (the image would be empty, or a few scattered pixels).
+void checkStepNotBeyondData(double dt, const mesh::Bounds& b, const char* option = "--step");
+
 }  // namespace sm::render

@@ -35,6 +35,11 @@ expect "--step" "$sm" render ok.pvtu --step -1 --out a.png
 expect "--step" "$sm" render ok.pvtu --step inf --out a.png
 # Finer than float positions along the rays resolve (sample indices would wrap): refused, not hung.
 expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
+# Longer than the data: most rays would take no sample (an empty image); element-exact
+# integration takes no samples and accepts it.
+expect "--step: 100 is longer than the data's diagonal" "$sm" render ok.pvtu --step 100 --out a.png
+"$sm" render ok.pvtu --step 100 --integration exact --size 16x16 --out exact.png ||
+  { echo "FAIL: element-exact integration refuses a long step"; fails=$((fails + 1)); }
 expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
 # Options another one makes meaningless are refused, not silently ignored.
 expect "--view and --eye" "$sm" render ok.pvtu --view +x --eye 3,3,3 --out a.png

@@ -226,6 +226,9 @@ TEST_F(InsituErrors, Settings) {
   // Finer than float positions along the rays resolve (the sample index could wrap).
   expectSettingError([](auto& s) { s.sampleDistance = 1e-12; },
                      "render: sampleDistance: 1e-12 is finer than float distances");
+  // Longer than the data: most rays would take no sample and the image would be empty.
+  expectSettingError([](auto& s) { s.sampleDistance = 1e6; },
+                     "render: sampleDistance: 1e+06 is longer than the data's diagonal");
 }
 
 // After any of these errors the renderer renders as if they had not happened.
