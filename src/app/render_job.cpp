@@ -102,10 +102,21 @@ struct Frames {
   Collectives& coll;
 };
 
+// A time sequence is numbered even when it turns out one frame long (--time all of a single
+// step, --time 3:3): a script that globs name_NNNN.png must not find name.png instead. (--orbit 1,
+// one frame from the camera given, is documented as the plain image.)
+bool asksForSequence(const RenderJob& job) {
+  return job.time == "all" || job.time.find(':') != std::string::npos;
+}
+
+bool numbersFrames(const RenderJob& job, size_t frames) {
+  return frames > 1 || asksForSequence(job);
+}
+
 // Statistics, extras and the image of a frame of the first run (collective).
 void writeFrame(const Frames& f, const FramePlan& p, render::FrameResult& frame) {
   f.report.addFrame(p.step, p.camera, frame, f.renderer, f.compositor);
-  const bool sequence = f.plan.size() > 1;
+  const bool sequence = numbersFrames(f.job, f.plan.size());
   writeFrameExtras(f.job, f.compositor, frame.pixels, p.number, sequence, f.coll);
   if (f.coll.rank() == 0) {
     scene::Image img(f.job.width, f.job.height);
@@ -177,6 +188,18 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ec && ra == rb;
 }
 
+// Whether `path` is one of the numbered files framePath makes of `base` (name_0012.png of
+// name.png): its name less a final _NNNN (four digits or more) is `base`.
+bool isFrameOf(const std::string& path, const std::string& base) {
+  const size_t slash = path.rfind('/'), dot = path.rfind('.');
+  const size_t end =
+      dot != std::string::npos && (slash == std::string::npos || dot > slash) ? dot : path.size();
+  size_t digits = end;
+  while (digits > 0 && path[digits - 1] >= '0' && path[digits - 1] <= '9') --digits;
+  if (end - digits < 4 || digits == 0 || path[digits - 1] != '_') return false;
+  return sameFile(path.substr(0, digits - 1) + path.substr(end), base);
+}
+
 // Every file the job writes goes into a folder that exists, is not a folder itself, is not the
 // mesh it reads, and is not another output: checked before any work, so that a mistyped
 // --stats-json neither fails after the image was written (a half-done run) nor overwrites the
@@ -194,6 +217,12 @@ void checkOutputs(const RenderJob& job) {
       if (sameFile(path, outputs[j].second))
         throw Error(option, ": '", path, "' is also the file of ", outputs[j].first);
   }
+  // The statistics are one file; the others are numbered in a sequence, and may not be that file.
+  if (!job.statsJson.empty() && (asksForSequence(job) || job.orbit > 1))
+    for (const auto& [option, path] : outputs)
+      if (option != std::string_view("--stats-json") && isFrameOf(job.statsJson, path))
+        throw Error("--stats-json: '", job.statsJson, "' is also the name of a numbered frame of ",
+                    option, " ('", path, "')");
   if (!job.l2Heatmap.empty() && fileExtension(job.l2Heatmap) != ".png")
     throw Error("--l2-heatmap: '", job.l2Heatmap, "' must end in .png");
   std::error_code ec;

@@ -109,6 +109,9 @@ expect "--stats-json: 'ok/ok_1.vtu' is the mesh being read" "$sm" render ok.pvtu
 expect "--dump-counts: 'ok.pvtu' is the mesh being read" "$sm" render ok.pvtu --dump-counts ok.pvtu --out a.png
 if ! cmp -s piece.bak ok/ok_1.vtu; then echo "FAIL: the input piece was overwritten"; fails=$((fails + 1)); fi
 expect "--stats-json: './a.png' is also the file of --out" "$sm" render ok.pvtu --stats-json ./a.png --out a.png
+# nor a numbered frame of a sequence (--orbit 2 writes a_0000.png and a_0001.png).
+expect "--stats-json: 'a_0001.png' is also the name of a numbered frame of --out ('a.png')" \
+  "$sm" render ok.pvtu --orbit 2 --stats-json a_0001.png --out a.png
 # Without --step the step comes from the mesh: faults name the mesh or the view, not --step.
 sed -e 's/0 0 0 1 0 0 0 1 0 0 0 1/0 0 0 1 0 0 0 1 0 1 1 0/' -e 's/Name="f&#10;[^"]*"/Name="f"/' forged.vtu > flat.vtu
 expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.png

@@ -74,6 +74,11 @@ done
 mpi 1 "$sm" render steps.pvtu "${view[@]}" --time 1:3:2 --out range.pfm
 [ ! -e range_0002.pfm ] || fail "--time 1:3:2 rendered step 2"
 for k in 1 3; do "$diff" single_$k.pfm range_000$k.pfm --max-abs 1e-3; done
+# A range or `all` is a numbered sequence even when it holds one step, so that a script's glob
+# finds it; a single step K is the plain name.
+mpi 1 "$sm" render steps.pvtu "${view[@]}" --time 2:2 --out one.pfm
+[ -e one_0002.pfm ] && [ ! -e one.pfm ] || fail "--time 2:2 did not write one_0002.pfm alone"
+"$diff" single_2.pfm one_0002.pfm --max-abs 1e-3
 mpi 1 "$sm" render steps.pvtu "${view[@]}" --time t=0.3 --out at1.pfm
 cmp at1.pfm single_1.pfm || fail "--time t=0.3 is not step 1"
 mpi 3 "$sm" render series.pvd "${view[@]}" --time t=0.7 --out at2.pfm
