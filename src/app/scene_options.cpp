@@ -31,7 +31,8 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--view", t["--view"], "Framing view when no --eye: iso, +x, -x, +y, -y, +z, -z");
   cmd->add_option(
       "--colormap", job.colormap,
-      "viridis, cool-to-warm, inferno, plasma, grayscale, jet, turbo, or a ParaView .json");
+      "viridis, cool-to-warm, inferno, plasma, grayscale, jet, turbo, or a ParaView .json "
+      "(FILE.json:NAME: one map of a preset file)");
   cmd->add_option("--range", t["--range"], "Scalar range LO,HI (default: the field's range)");
   cmd->add_option("--opacity", t["--opacity"],
                   "Opacity map as VALUE:OPACITY points in data values, linear between them "

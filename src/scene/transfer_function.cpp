@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/log.h"
 #include "scene/color_space.h"
 #include "scene/colormap_data.h"
 
@@ -108,18 +109,43 @@ std::vector<glm::dvec3> sampleColors(std::vector<std::pair<double, glm::dvec3>> 
 
 }  // namespace
 
-TransferFunction parseParaViewColormap(const std::string& text, const std::string& src,
-                                       int entries) {
+namespace {
+
+std::string presetName(const nlohmann::json& map) {
+  return map.is_object() && map.contains("Name") && map["Name"].is_string()
+             ? map["Name"].get<std::string>()
+             : std::string();
+}
+
+// The colour map `preset` names in a ParaView preset file (an array of maps, as ParaView exports
+// them, or one map), or without a name the first, with a warning when there are others.
+nlohmann::json choosePreset(nlohmann::json j, const std::string& src, const std::string& preset) {
+  if (!j.is_array()) j = nlohmann::json::array({std::move(j)});
+  if (j.empty()) throw FileError(src, "empty colour-map array");
+  std::string names;
+  for (const auto& m : j) names += (names.empty() ? "'" : ", '") + presetName(m) + "'";
+  if (preset.empty()) {
+    if (j.size() > 1)
+      log::warning(src, ": holds ", j.size(), " colour maps (", names,
+                   "); rendering the first; name one with --colormap ", src, ":NAME");
+    return j[0];
+  }
+  for (const auto& m : j)
+    if (presetName(m) == preset) return m;
+  throw FileError(src, "has no colour map named '", preset, "' (it holds ", names, ")");
+}
+
+}  // namespace
+
+TransferFunction parseParaViewColormap(const std::string& text, const std::string& src, int entries,
+                                       const std::string& preset) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw FileError(src, "not valid JSON: ", e.what());
   }
-  if (j.is_array()) {
-    if (j.empty()) throw FileError(src, "empty colour-map array");
-    j = j[0];
-  }
+  j = choosePreset(std::move(j), src, preset);
   if (!j.is_object()) throw FileError(src, "not a ParaView colour map (expected an object)");
   auto numbers = [&](const char* key) {
     std::vector<double> v;
@@ -155,8 +181,13 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   if (!op.empty() && op.size() % 4 != 0)
     throw FileError(src, "\"Points\" must hold (x, opacity, midpoint, sharpness) quadruples");
   std::vector<std::pair<double, double>> opts;
-  for (size_t i = 0; i < op.size(); i += 4)
+  for (size_t i = 0; i < op.size(); i += 4) {
+    // As --opacity refuses them: an opacity of 2 is a mistake, not a request for full opacity.
+    if (op[i + 1] < -1e-6 || op[i + 1] > 1.0 + 1e-6)
+      throw FileError(src, "\"Points\": opacity ", op[i + 1], " of point ", i / 4 + 1,
+                      " is outside [0, 1]");
     opts.push_back({op[i], std::clamp(op[i + 1], 0.0, 1.0)});
+  }
   std::stable_sort(opts.begin(), opts.end(), [](auto& a, auto& b) { return a.first < b.first; });
   if (!opts.empty()) {
     double o0 = opts.front().first, o1 = opts.back().first;
@@ -210,6 +241,12 @@ TransferFunction makeTransferFunction(const std::string& colormap, int entries) 
   if (entries < 256) throw Error("transfer function: ", entries, " entries (at least 256)");
   if (fileExtension(colormap) == ".json")
     return parseParaViewColormap(readTextFile(colormap), colormap, entries);
+  // FILE.json:NAME picks a map of a preset file that holds several.
+  if (const size_t at = colormap.rfind(".json:"); at != std::string::npos) {
+    const std::string file = colormap.substr(0, at + 5), name = colormap.substr(at + 6);
+    if (name.empty()) throw Error("--colormap: '", colormap, "' names no colour map after ':'");
+    return parseParaViewColormap(readTextFile(file), file, entries, name);
+  }
   return fromBuiltin(colormap, entries);
 }
 

@@ -48,7 +48,8 @@ void checkScale(const TransferFunction& tf, const std::string& what);
 std::vector<std::string> builtinColormapNames();
 
 // A transfer function from a built-in colour map name ("viridis", "cool-to-warm", "inferno",
-// "plasma", "grayscale", "jet", "turbo") or a ParaView colour-map JSON file, with `entries` table
+// "plasma", "grayscale", "jet", "turbo") or a ParaView colour-map JSON file (FILE.json:NAME picks
+// a map of a preset file by its "Name"), with `entries` table
 // entries. Opacity is a linear ramp 0..1 unless the JSON gives "Points". Throws sm::Error naming
 // the option or file.
 TransferFunction makeTransferFunction(const std::string& colormap, int entries = 256);
@@ -65,10 +66,12 @@ struct OpacityPoint {
 void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
                       const std::string& what);
 
-// Parses a ParaView colour map (an object, or an array whose first element is one) with
-// "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...), "ColorSpace"
-// (RGB, Lab, HSV, Diverging) and "NanColor". Control points are rescaled to [0, 1].
+// Parses a ParaView colour map (an object, or an array of them as ParaView exports presets: the
+// one whose "Name" is `preset`, or without one the first, warning when there are others) with
+// "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...; an opacity
+// outside [0, 1] is an error), "ColorSpace" (RGB, Lab, HSV, Diverging) and "NanColor". Control
+// points are rescaled to [0, 1].
 TransferFunction parseParaViewColormap(const std::string& jsonText, const std::string& sourceName,
-                                       int entries = 256);
+                                       int entries = 256, const std::string& preset = "");
 
 }  // namespace sm::scene

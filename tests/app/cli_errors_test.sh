@@ -118,6 +118,12 @@ expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.p
 expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
+# A preset file of several maps: FILE.json:NAME picks one; a name it lacks is refused, naming those
+# it holds.
+echo '[{"Name": "a", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]}, {"Name": "b", "RGBPoints": [0, 1, 0, 0, 1, 0, 0, 1]}]' > presets.json
+"$sm" render ok.pvtu --colormap presets.json:b --size 16x16 --out preset.png ||
+  { echo "FAIL: --colormap presets.json:b"; fails=$((fails + 1)); }
+expect "presets.json: has no colour map named 'c' (it holds 'a', 'b')" "$sm" render ok.pvtu --colormap presets.json:c --out a.png
 # Cell data only (what finite-volume solvers write): a .vtu's renders without --field, its first
 # array (app.cell-data renders it: this test runs no renders, as the sanitizer build runs it and
 # the driver leaks); a legacy file's, whose cell data is known only by reading it, is named as
