@@ -18,7 +18,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libglfw3-dev libglm-dev libgtest-dev googletest
   libgmsh-dev gmsh libmetis-dev
-  libpugixml-dev nlohmann-json3-dev libcli11-dev libstb-dev zlib1g-dev libpng-dev
+  libpugixml-dev nlohmann-json3-dev libcli11-dev libstb-dev zlib1g-dev liblz4-dev liblzma-dev libpng-dev
   clang libclang-rt-14-dev
   xvfb xauth
   python3 python3-vtk9 python3-numpy python3-matplotlib

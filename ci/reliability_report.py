@@ -148,8 +148,9 @@ def fuzz_section(md):
               "cache accepted with inconsistent arrays, a colour table outside [0, 1].\n")
     md.append("Run limits: `-max_len=65536` (larger seeds are read truncated), "
               "`-malloc_limit_mb=256` (no 64 KiB input may make one allocation of 256 MiB: a "
-              "64 KiB zlib stream inflates to at most 64 MiB, so more means a declared size was "
-              "believed), `-rss_limit_mb=2048`, `-timeout=30` per input (a hang), leak checking "
+              "64 KiB zlib stream inflates to at most 64 MiB and LZ4 blocks to 16 MiB, and an LZMA "
+              "block's size must first match its .xz index, which a CRC32 guards, so more means a "
+              "declared size was believed), `-rss_limit_mb=2048`, `-timeout=30` per input (a hang), leak checking "
               "on. Any finding fails CI and names the input to commit.\n")
     md.append("| target | entry point | input layout | seeds |")
     md.append("|---|---|---|---|")
@@ -305,8 +306,9 @@ def sanitize_section(md):
 
 LIMITS = [
     (".vtu", "NumberOfPoints/Cells and every DataArray's tuples x components against the bytes "
-     "present (raw, base64 and ascii); appended headers; zlib block tables (count, sizes, sum "
-     "against the data); a size product guard at 2^60",
+     "present (raw, base64 and ascii); appended headers; compressed block tables (count, sizes, sum "
+     "against the data and against what zlib, LZ4 or LZMA can expand to; an LZMA block against its "
+     ".xz index); a size product guard at 2^60",
      "tests/io/robustness_test.cpp `AbsurdSizesInVtuAreRejectedBeforeAllocating`, "
      "`TruncatedFilesAreErrorsNotCrashes`, `FlippedBytesAreErrorsOrMeshes`"),
     (".pvtu", "each piece is a .vtu with the checks above; the piece count; a piece's declared "

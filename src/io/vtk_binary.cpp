@@ -13,9 +13,6 @@
 namespace sm::io {
 namespace {
 
-// deflate cannot expand data by more than about 1032:1; a block table claiming more is corrupt.
-constexpr uint64_t kMaxZlibRatio = 1032;
-
 uint64_t readHeaderValue(const uint8_t* p, const BinaryFormat& f) {
   return f.header64 ? loadAs<uint64_t>(p, f.swap) : loadAs<uint32_t>(p, f.swap);
 }
@@ -48,67 +45,95 @@ Payload readUncompressed(PayloadSource& src, const BinaryFormat& f, uint64_t exp
   return p;
 }
 
-Payload readZlib(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
-                 const std::string& source, const std::string& what, Length length) {
+// A compressed array's block table, checked against the data present.
+struct BlockTable {
+  uint64_t blocks = 0, blockSize = 0, lastSize = 0;
+  uint64_t total = 0;                // uncompressed bytes
+  std::vector<uint64_t> compOffset;  // block b's compressed bytes: [compOffset[b], [b + 1])
+
+  uint64_t size(uint64_t b) const { return b + 1 == blocks && lastSize ? lastSize : blockSize; }
+};
+
+// The block count, block size and last block size, and the total they give.
+BlockTable readBlockSizes(PayloadSource& src, const BinaryFormat& f, const std::string& source,
+                          const std::string& what) {
   const uint64_t hs = f.header64 ? 8 : 4;
   ByteBuffer scratch;
   const uint8_t* h = src.take(3 * hs, scratch);
   if (!h)
     throw FileError(source, what, ": ",
                     src.whyShort("the data ends before the compression header"));
-  const uint64_t nBlocks = readHeaderValue(h, f);
-  const uint64_t blockSize = readHeaderValue(h + hs, f);
-  const uint64_t lastSize = readHeaderValue(h + 2 * hs, f);
-  if (nBlocks > src.maxRemaining() / hs)
-    throw FileError(source, what, ": the compression header claims ", nBlocks,
+  BlockTable t;
+  t.blocks = readHeaderValue(h, f);
+  t.blockSize = readHeaderValue(h + hs, f);
+  t.lastSize = readHeaderValue(h + 2 * hs, f);
+  if (t.blocks > src.maxRemaining() / hs)
+    throw FileError(source, what, ": the compression header claims ", t.blocks,
                     " blocks, more than the data can hold");
-  if (lastSize > blockSize)
-    throw FileError(source, what, ": the last compressed block (", lastSize,
-                    " bytes) is larger than the block size (", blockSize, ")");
-  uint64_t total = 0;
-  if (nBlocks > 0) {
-    if (nBlocks - 1 > (UINT64_MAX - blockSize) / std::max<uint64_t>(blockSize, 1))
+  if (t.lastSize > t.blockSize)
+    throw FileError(source, what, ": the last compressed block (", t.lastSize,
+                    " bytes) is larger than the block size (", t.blockSize, ")");
+  if (t.blocks > 0) {
+    if (t.blocks - 1 > (UINT64_MAX - t.blockSize) / std::max<uint64_t>(t.blockSize, 1))
       throw FileError(source, what, ": the compression header claims an impossible size");
-    total = (nBlocks - 1) * blockSize + (lastSize ? lastSize : blockSize);
+    t.total = (t.blocks - 1) * t.blockSize + (t.lastSize ? t.lastSize : t.blockSize);
   }
-  checkSize(total, expected, length, source, what);
-  ByteBuffer sizeScratch;
-  const uint8_t* s = src.take(nBlocks * hs, sizeScratch);
+  return t;
+}
+
+// The compressed size of each block, which must all lie within the data and could hold the total.
+void readCompressedSizes(PayloadSource& src, const BinaryFormat& f, BlockTable& t,
+                         const std::string& source, const std::string& what) {
+  const uint64_t hs = f.header64 ? 8 : 4;
+  ByteBuffer scratch;
+  const uint8_t* s = src.take(t.blocks * hs, scratch);
   if (!s)
     throw FileError(source, what, ": ",
                     src.whyShort("the data ends inside the compression header"));
-  std::vector<uint64_t> compOffset(nBlocks + 1, 0);
-  for (uint64_t b = 0; b < nBlocks; ++b) {
+  t.compOffset.assign(t.blocks + 1, 0);
+  for (uint64_t b = 0; b < t.blocks; ++b) {
     uint64_t c = readHeaderValue(s + b * hs, f);
-    if (c > src.maxRemaining() || compOffset[b] + c > src.maxRemaining())
+    if (c > src.maxRemaining() || t.compOffset[b] + c > src.maxRemaining())
       throw FileError(source, what, ": compressed block ", b, " runs past the end of the data");
-    compOffset[b + 1] = compOffset[b] + c;
+    t.compOffset[b + 1] = t.compOffset[b] + c;
   }
-  const uint64_t compTotal = compOffset[nBlocks];
-  if (total / kMaxZlibRatio > compTotal + 64 * nBlocks)
-    throw FileError(source, what, ": claims ", total, " bytes from ", compTotal,
-                    " compressed bytes, more than zlib can produce");
+  const uint64_t compTotal = t.compOffset[t.blocks];
+  if (t.total / maxExpansion(f.compressor) > compTotal + 64 * t.blocks)
+    throw FileError(source, what, ": claims ", t.total, " bytes from ", compTotal,
+                    " compressed bytes, more than ", compressorName(f.compressor), " can produce");
+}
+
+Payload readCompressed(PayloadSource& src, const BinaryFormat& f, uint64_t expected,
+                       const std::string& source, const std::string& what, Length length) {
+  BlockTable t = readBlockSizes(src, f, source, what);
+  checkSize(t.total, expected, length, source, what);
+  readCompressedSizes(src, f, t, source, what);
   ByteBuffer compScratch;
-  const uint8_t* comp = src.take(compTotal, compScratch);
+  const uint8_t* comp = src.take(t.compOffset[t.blocks], compScratch);
   if (!comp)
     throw FileError(source, what, ": ", src.whyShort("the data ends inside the compressed blocks"));
+  auto corrupt = [&](uint64_t b, const std::string& why) {
+    return FileError(source, what, ": compressed block ", b, " is corrupt (", why, ")");
+  };
+  for (uint64_t b = 0; b < t.blocks; ++b) {
+    const std::string why = checkRecordedSize(f.compressor, comp + t.compOffset[b],
+                                              t.compOffset[b + 1] - t.compOffset[b], t.size(b));
+    if (!why.empty()) throw corrupt(b, why);
+  }
   Payload p;
-  p.bytes = total;
-  p.storage = ByteBuffer::allocate(total);
+  p.bytes = t.total;
+  p.storage = ByteBuffer::allocate(t.total);
   p.data = p.storage.data();
   uint8_t* out = p.storage.data();
   parallelFor(
-      static_cast<int64_t>(nBlocks),
+      static_cast<int64_t>(t.blocks),
       [&](int64_t b0, int64_t b1) {
-        for (int64_t b = b0; b < b1; ++b) {
+        for (uint64_t b = uint64_t(b0); b < uint64_t(b1); ++b) {
           throwIfStopped(f.stop, source);
-          const uint64_t want = (uint64_t(b) + 1 == nBlocks && lastSize) ? lastSize : blockSize;
-          uLongf got = want;
-          int rc = uncompress(out + uint64_t(b) * blockSize, &got, comp + compOffset[b],
-                              compOffset[b + 1] - compOffset[b]);
-          if (rc != Z_OK || got != want)
-            throw FileError(source, what, ": compressed block ", b,
-                            " is corrupt (zlib: ", rc == Z_OK ? "wrong size" : zError(rc), ")");
+          const std::string why =
+              decodeBlock(f.compressor, comp + t.compOffset[b],
+                          t.compOffset[b + 1] - t.compOffset[b], out + b * t.blockSize, t.size(b));
+          if (!why.empty()) throw corrupt(b, why);
         }
       },
       f.threads, 4);
@@ -153,9 +178,9 @@ uint64_t PayloadSource::maxRemaining() const {
 Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,
                     const std::string& source, const std::string& what, Length length) {
   throwIfStopped(format.stop, source);
-  return format.compressor == Compressor::ZLib
-             ? readZlib(src, format, expectedBytes, source, what, length)
-             : readUncompressed(src, format, expectedBytes, source, what, length);
+  return format.compressor == Compressor::None
+             ? readUncompressed(src, format, expectedBytes, source, what, length)
+             : readCompressed(src, format, expectedBytes, source, what, length);
 }
 
 std::vector<uint8_t> compressBlocks(uint64_t bytes, uint64_t blockSize, int level, unsigned threads,

@@ -13,18 +13,17 @@
 #include <vector>
 
 #include "io/base64.h"
+#include "io/block_codec.h"
 #include "io/numeric_array.h"
 #include "io/read_stop.h"
 
 namespace sm::io {
 
-enum class Compressor { None, ZLib };
-
 struct BinaryFormat {
   bool header64 = false;  // header_type="UInt64"
   bool swap = false;      // byte_order is not the host's
   Compressor compressor = Compressor::None;
-  unsigned threads = 0;  // inflating blocks (0: all cores)
+  unsigned threads = 0;  // decompressing blocks (0: all cores)
   StopRequested stop;    // asked before each compressed block (ReadOptions::stopRequested)
 };
 
@@ -63,7 +62,7 @@ struct Payload {
 // by its own length; one listing entries nothing refers to is valid there).
 enum class Length { Exact, AtLeast };
 
-// Reads one array (header and data, decompressing zlib blocks in parallel) that must hold
+// Reads one array (header and data, decompressing blocks in parallel) that must hold
 // expectedBytes (or, Length::AtLeast, no fewer). Every size in the header is checked against the
 // data actually present before anything is allocated; errors are sm::FileError(source, what, ...).
 Payload readPayload(PayloadSource& src, const BinaryFormat& format, uint64_t expectedBytes,

@@ -108,9 +108,10 @@ void VtuDocument::readFormat(pugi::xml_node root) {
   std::string_view comp = root.attribute("compressor").value();
   if (comp == "vtkZLibDataCompressor")
     format_.compressor = Compressor::ZLib;
-  else if (comp == "vtkLZ4DataCompressor" || comp == "vtkLZMADataCompressor")
-    throw FileError(source_, "is compressed with ", comp,
-                    ", which shellmarch does not read; save it with zlib or no compression");
+  else if (comp == "vtkLZ4DataCompressor")
+    format_.compressor = Compressor::LZ4;
+  else if (comp == "vtkLZMADataCompressor")
+    format_.compressor = Compressor::LZMA;
   else if (!comp.empty())
     throw FileError(source_, "uses the unknown compressor '", printable(comp), "'");
 }

@@ -52,6 +52,8 @@ const char* kFiles[] = {"mesh_ascii.vtu",
                         "mesh_appended_b64_zlib_h64.vtu",
                         "mesh_appended_b64_none_h32.vtu",
                         "mesh_binary_zlib_bigendian.vtu",
+                        "mesh_lz4.vtu",
+                        "mesh_lzma.vtu",
                         "mesh_int_types.vtu",
                         "mesh_v42_ascii.vtk",
                         "mesh_v42_binary.vtk",
@@ -174,6 +176,30 @@ TEST(Robustness, BrokenStructureInVtu) {
   expectError(
       replaced(fixtureText("mesh_appended_b64_none_h32.vtu"), "==NAAAAAAAgD8A", "==NA#AAAAAgD8A"),
       "c.vtu", "point array 'pressure': '#', not base64, at character 2 of its base64 text");
+}
+
+// LZ4 (appended raw) and LZMA (inline base64) blocks of the point coordinates (3 blocks: 128,
+// 128 and 56 bytes), damaged: a byte of a block, and the header's block sizes changed so that
+// they still add up to the array's 312 bytes but no longer match what each block decodes to.
+TEST(Robustness, DamagedLz4AndLzmaBlocks) {
+  Guard guard;
+  const std::string lz4 = fixtureText("mesh_lz4.vtu");
+  const size_t points = lz4.find('_', lz4.find("<AppendedData")) + 1 + 864;  // its offset
+  const std::string what = "points: compressed block 0 is corrupt (";
+  std::string byte = lz4;
+  byte[points + 48] ^= 0x55;  // block 0's first token
+  expectError(byte, "l.vtu", what + "lz4: ");
+  std::string sizes = lz4;
+  const uint64_t blockSize = 130, lastSize = 52;
+  std::memcpy(&sizes[points + 8], &blockSize, 8);
+  std::memcpy(&sizes[points + 16], &lastSize, 8);
+  expectError(sizes, "l.vtu", what + "lz4: wrong size)");
+
+  const std::string lzma = fixtureText("mesh_lzma.vtu");
+  expectError(replaced(lzma, "bhU3xBexvf1x", "bhU3xBeyvf1x"), "x.vtu", what + "lzma: data error)");
+  expectError(replaced(lzma, "AwAAAAAAAACAAAAAAAAAADgAAAAAAAAAVAAAAAAAAABYAAAAAAAAAEgAAAAAAAAA",
+                       "AwAAAAAAAACCAAAAAAAAADQAAAAAAAAAVAAAAAAAAABYAAAAAAAAAEgAAAAAAAAA"),
+              "x.vtu", what + "lzma: wrong size (its index records 128 bytes))");
 }
 
 TEST(Robustness, AbsurdSizesInLegacyVtk) {
