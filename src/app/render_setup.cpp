@@ -123,14 +123,15 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   s.transferFunction.opacityScale = job.opacityScale;
   s.transferFunction.unitDistance =
       job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));
-  s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean()));
+  s.dt = job.step.value_or(render::defaultStep(share.elementSize.mean(), share.wholeBounds));
   // Without --step the step comes from the mesh: a fault then lies with the mesh or the view,
   // not with an option the user did not give.
   if (!job.step && !(s.dt > 0))
     throw Error(job.mesh, ": every element has zero volume: there is no volume to render");
   if (const double finest = render::finestStep(s.camera.eye, share.wholeBounds);
       !job.step && s.dt < finest)
-    throw Error("the default sample step ", s.dt, " (half the mean element size) is finer than ",
+    throw Error("the default sample step ", s.dt,
+                " (half the mean element size, at most the diagonal / 256) is finer than ",
                 "float distances along a ray resolve this far from the data (up to ",
                 finest * 0x1p24, "): move the eye closer or give --step of at least ", finest);
   // Checked here against the whole data set too, so that every rank refuses the step alike.

@@ -44,7 +44,8 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--unit-distance", t["--unit-distance"],
                   "Length over which opacity 1 gives optical depth 1 (default: diagonal / 8)");
   cmd->add_option("--step", t["--step"],
-                  "Sample distance along rays (default: half the mean element size)");
+                  "Sample distance along rays (default: half the mean element size, at most the "
+                  "data's diagonal / 256)");
   cmd->add_option(
       "--integration", t["--integration"],
       "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");

@@ -99,7 +99,8 @@ render::RenderSettings toRenderSettings(const api::RenderSettings& s, const Mesh
   r.transferFunction = transferFunction(s);
   r.transferFunction.unitDistance =
       s.unitDistance > 0 ? s.unitDistance : render::defaultUnitDistance(frame.whole);
-  r.dt = s.sampleDistance > 0 ? s.sampleDistance : render::defaultStep(frame.meanElementSize);
+  r.dt = s.sampleDistance > 0 ? s.sampleDistance
+                              : render::defaultStep(frame.meanElementSize, frame.whole);
   if (!(r.dt > 0 && r.transferFunction.unitDistance > 0))
     throw Error("render: the mesh is flat (zero volume); give sampleDistance and unitDistance");
   // Here, with the whole mesh's bounds, so that every rank refuses it alike (an agreed error).

@@ -1,7 +1,9 @@
 // Defaults a user of ParaView or VisIt expects when they give no camera, step or range: the view
-// frames the data, samples are half an element apart, and opacity 1 means an optical depth of
-// about 8 across the data set.
+// frames the data, samples are half an element apart (at least 256 across the data set), and
+// opacity 1 means an optical depth of about 8 across the data set.
 #pragma once
+
+#include <algorithm>
 
 #include "mesh/unstructured_mesh.h"
 #include "prep/prepared_rank.h"
@@ -17,8 +19,21 @@ struct ElementSizeSum {
 };
 ElementSizeSum elementSizeSum(const mesh::UnstructuredMesh& mesh);
 
-inline double defaultStep(double meanElementSize) {
+// Half an element: samples resolve each element's interpolant. The accuracy study
+// (bench accuracy) refines meshes at this rule alone.
+inline double elementStep(double meanElementSize) {
   return 0.5 * meanElementSize;
+}
+
+// A frame's step when none is given: half the mean element size, but never longer than the
+// diagonal of the whole data set over kSamplesAcross. A coarse mesh (a few elements a side) would
+// otherwise be sampled a dozen times across, and the grid t = k dt shows as nested rings (a 4^3
+// cube: max error 0.36 against element-exact integration, 0.026 at the cap). The demo, 560
+// samples across, is unchanged.
+constexpr double kSamplesAcross = 256;
+inline double defaultStep(double meanElementSize, const mesh::Bounds& whole) {
+  const double step = elementStep(meanElementSize);
+  return whole.empty ? step : std::min(step, whole.diagonal() / kSamplesAcross);
 }
 inline double defaultUnitDistance(const mesh::Bounds& whole) {
   return whole.diagonal() / 8.0;

@@ -464,6 +464,38 @@ TEST(HardCases, StepFinerThanFloatResolvesIsRefused) {
   EXPECT_EQ(g.frame.counters.lostRays, 0u);
 }
 
+// Sampled half an element apart, a mesh of a few elements a side takes a dozen samples across and
+// the grid t = k dt shows as nested rings; the default step is capped at the diagonal / 256,
+// which brings the image close to element-exact integration.
+TEST(HardCases, CoarseMeshesAreSampledAt256StepsAcrossByDefault) {
+  mesh::Bounds unit;
+  unit.extend({0, 0, 0});
+  unit.extend({1, 1, 1});
+  EXPECT_DOUBLE_EQ(defaultStep(0.25, unit), std::sqrt(3.0) / 256);
+  EXPECT_DOUBLE_EQ(defaultStep(0.001, unit), 0.0005);  // fine meshes keep half an element
+  EXPECT_DOUBLE_EQ(defaultStep(0.25, mesh::Bounds{}), 0.125);
+  auto m = ref::test::cubeMesh(Split::Hex, 4);
+  auto f = smoothField(m, {0, 0, 0}, 1);
+  RenderSettings s = cubeView(48);
+  s.integration = Integration::ElementExact;
+  const scene::Image exact = test::renderOnGpu(m, f, s).image;
+  auto maxDiff = [&](double dt) {
+    s.integration = Integration::Sampled;
+    s.dt = dt;
+    const scene::Image g = test::renderOnGpu(m, f, s).image;
+    float d = 0;
+    for (size_t i = 0; i < g.pixels.size(); ++i)
+      for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(g.pixels[i][c] - exact.pixels[i][c]));
+    return d;
+  };
+  const double mean = elementSizeSum(m).mean();
+  const float elementRule = maxDiff(elementStep(mean)),
+              capped = maxDiff(defaultStep(mean, m.bounds()));
+  EXPECT_GT(elementRule, 0.08f);  // 0.11 on lavapipe
+  EXPECT_LT(capped, 0.2f * elementRule);
+  EXPECT_LT(capped, 0.025f);  // 0.012
+}
+
 // A shell larger than the device's acceleration structures hold is refused before the build (on
 // the device it would be undefined behaviour). SHELLMARCH_AS_PRIMITIVE_LIMIT stands in for a device
 // at the spec's minimum, 2^29 - 1, which no test shell reaches; the grid's shell has 48 triangles.

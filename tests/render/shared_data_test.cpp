@@ -35,7 +35,7 @@ void expectMatchesReference(const std::string& file) {
   s.transferFunction.lo = lo;
   s.transferFunction.hi = hi > lo ? hi : lo + 1;
   s.transferFunction.unitDistance = m.bounds().diagonal() / 8;
-  s.dt = defaultStep(elementSizeSum(m).mean());
+  s.dt = defaultStep(elementSizeSum(m).mean(), m.bounds());
   s.earlyTermination = 2.0;
   auto gpu = test::renderOnGpu(m, values, s);
   EXPECT_EQ(gpu.validationErrors, 0u) << file;

@@ -113,7 +113,7 @@ Loaded load(const Case& c, int w, int h) {
   s.transferFunction.opacityScale = c.opacityScale;
   s.transferFunction.unitDistance = render::defaultUnitDistance(l.mesh.bounds());
   l.h = render::elementSizeSum(l.mesh).mean();
-  s.dt = render::defaultStep(l.h);
+  s.dt = render::elementStep(l.h);
   s.earlyTermination = 2.0;  // off: rungs differ by what they say only
   return l;
 }

@@ -34,7 +34,8 @@ render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w,
   s.transferFunction.hi = sc.range.second;
   s.transferFunction.opacityScale = a.opacityScale;
   s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
-  s.dt = a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean());
+  s.dt =
+      a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean(), sc.share.wholeBounds);
   s.earlyTermination = a.earlyTermination;
   return s;
 }
@@ -281,7 +282,8 @@ void configureRenderBench(CLI::App& cmd) {
   cmd.add_option("--fovy", a->fovy, "Vertical field of view, degrees")->capture_default_str();
   cmd.add_option("--opacity-scale", a->opacityScale, "Multiplies the opacity map")
       ->capture_default_str();
-  cmd.add_option("--step", a->stepText, "Sample distance (default: half the mean element size)");
+  cmd.add_option("--step", a->stepText,
+                 "Sample distance (default: half the mean element size, at most diagonal / 256)");
   cmd.add_option("--early-termination", a->earlyTermination, "shellmarch's early ray termination")
       ->capture_default_str();
   cmd.add_option("--sizes", a->sizes, "Image sizes: N (square) or WxH, comma separated")

@@ -139,9 +139,10 @@ struct RenderSettings {
   // the table's first entry).
   bool logScale = false;
   double opacityScale = 1.0;
-  double unitDistance = 0;         // opacity 1 means optical depth 1 over this; <= 0: diagonal / 8
-  double sampleDistance = 0;       // between samples along a ray; <= 0: half the mean element size
-  double earlyTermination = 0.99;  // a ray stops once this opaque; >= 1 never stops early
+  double unitDistance = 0;    // opacity 1 means optical depth 1 over this; <= 0: diagonal / 8
+  double sampleDistance = 0;  // between samples along a ray; <= 0: half the mean element size, at
+                              // most the diagonal / 256
+  double earlyTermination = 0.99;     // a ray stops once this opaque; >= 1 never stops early
   std::vector<ClipPlane> clipPlanes;  // up to 6: only what every plane keeps is drawn
   // Draw the colour legend into the image, as `render --legend` does: the colour map at the
   // right with the field's name and range. It is opaque; its text is white when the image will
