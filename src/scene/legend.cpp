@@ -67,6 +67,9 @@ glm::vec3 tableColor(const TransferFunction& tf, double x) {
 
 std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, int scale) {
   const double pixels = double(std::max(barHeight - 1, 1));
+  // A constant field (or a range narrower than the labels' digits) would read "7 / 7 / 7": one
+  // mark in the middle says it.
+  if (label(tf.lo) == label(tf.hi)) return {{0.5, label(tf.lo)}};
   std::vector<LegendTick> out = {{0.0, label(tf.lo)}};
   std::vector<LegendTick> inside;
   if (tf.scale == ScalarScale::Log)

@@ -144,6 +144,17 @@ TEST(LegendTicks, ALinearScaleMarksTheEndsAndTheMiddle) {
 }
 
 // Where each decade sits is where the colour map puts its value: the bar's coordinate of 10^e.
+TEST(LegendTicks, ARangeWhoseEndsReadAlikeIsMarkedOnce) {
+  TransferFunction tf = makeTransferFunction("viridis");
+  tf.lo = tf.hi = 7;  // a constant field
+  std::vector<LegendTick> t = legendTicks(tf, 200, 1);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].text, "7");
+  EXPECT_DOUBLE_EQ(t[0].at, 0.5);
+  tf.hi = 7.0000001;  // ends that print alike
+  EXPECT_EQ(legendTicks(tf, 200, 1).size(), 1u);
+}
+
 TEST(LegendTicks, ALogScaleMarksEachDecadeWhereTheMapPutsIt) {
   const TransferFunction tf = logViridis(0.5, 2000.0);
   const auto t = legendTicks(tf, 240, 1);
