@@ -199,7 +199,7 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
     if (!a) throw FileError(file, "a piece lacks the ", what);
     std::vector<float> v =
         toFloats(doc.decode(a, cells ? p.numCells : p.numPoints, what, info.components),
-                 load->component, options.threads);
+                 load->component, options.threads, concat(file, ": ", what));
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;

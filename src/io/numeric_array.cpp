@@ -2,11 +2,16 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <new>
+#include <set>
+#include <string>
 
 #include "common/error.h"
+#include "common/log.h"
 #include "common/parallel.h"
 
 namespace sm::io {
@@ -56,20 +61,61 @@ NumericArray NumericArray::owned(ScalarType type, uint32_t components, uint64_t 
   return a;
 }
 
-std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads) {
+namespace {
+
+// The finite values' extent, in double.
+struct Span {
+  double lo = INFINITY, hi = -INFINITY;
+  void add(double v) {
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  void add(const Span& o) { lo = std::min(lo, o.lo), hi = std::max(hi, o.hi); }
+};
+
+// Values stored as 32-bit floats keep 24 bits: 1e12 + 0..1000 all become 999999995904, and a
+// render shows one colour without saying why. Warned once per array and run (pieces and steps
+// repeat it) when the span holds fewer than 256 float steps, the colour table's resolution.
+void warnIfFloatsCannotResolve(const Span& s, const std::string& what) {
+  if (what.empty() || !(s.lo < s.hi)) return;
+  const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::abs(s.lo), std::abs(s.hi))) - 23);
+  if (s.hi - s.lo >= 256 * ulp) return;
+  static std::mutex mutex;
+  static std::set<std::string> warned;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!warned.insert(what).second) return;
+  const int levels = int((s.hi - s.lo) / ulp) + 1;
+  log::warning(what, ": values span ", s.hi - s.lo, " at ", s.hi, ", where 32-bit floats step by ",
+               ulp, ": ",
+               levels == 1 ? std::string("they show as one value")
+                           : concat("at most ", levels, " levels show"),
+               "; write the field less an offset to see it whole");
+}
+
+}  // namespace
+
+std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads,
+                            const std::string& what) {
   std::vector<float> out(a.tuples);
   const uint32_t nc = a.components;
+  std::mutex mutex;
+  Span span;
   visitArray(a, [&](auto tag, auto swap) {
     using T = typename decltype(tag)::type;
     constexpr bool kSwap = decltype(swap)::value;
+    // Float input and 16-bit and smaller integers are held exactly; only wider types can lose.
+    constexpr bool kMayLose = !std::is_same_v<T, float> && sizeof(T) > 2;
     const uint8_t* d = a.data;
     parallelFor(
         static_cast<int64_t>(a.tuples),
         [&](int64_t b, int64_t e) {
+          Span local;
           if (component >= 0 || nc == 1) {
             const uint64_t c = component >= 0 ? uint64_t(component) : 0;
-            for (int64_t i = b; i < e; ++i)
-              out[i] = static_cast<float>(loadAs<T, kSwap>(d + (i * nc + c) * sizeof(T)));
+            for (int64_t i = b; i < e; ++i) {
+              const T v = loadAs<T, kSwap>(d + (i * nc + c) * sizeof(T));
+              out[i] = static_cast<float>(v);
+              if constexpr (kMayLose) local.add(static_cast<double>(v));
+            }
           } else {
             for (int64_t i = b; i < e; ++i) {
               double s = 0.0;
@@ -78,11 +124,15 @@ std::vector<float> toFloats(const NumericArray& a, int component, unsigned threa
                 s += v * v;
               }
               out[i] = static_cast<float>(std::sqrt(s));
+              if constexpr (kMayLose) local.add(std::sqrt(s));
             }
           }
+          std::lock_guard<std::mutex> lock(mutex);
+          span.add(local);
         },
         threads, kParallelMin);
   });
+  warnIfFloatsCannotResolve(span, what);
   return out;
 }
 

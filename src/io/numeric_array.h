@@ -59,8 +59,10 @@ decltype(auto) visitArray(const NumericArray& a, F&& f) {
 
 // Values of a point field: component `component`, or for component < 0 the single value of a
 // one-component array or the magnitude of a vector. Non-finite values pass through. threads: 0
-// for all cores.
-std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads = 0);
+// for all cores. With `what` ("FILE: point array 'p'"), warns once per run when the values' span
+// is too narrow for their magnitude in 32-bit floats (1e12 + 0..1000 becomes one value).
+std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads = 0,
+                            const std::string& what = {});
 // Tuples of three components as points (callers check components == 3).
 std::vector<glm::dvec3> toPoints(const NumericArray& a, unsigned threads = 0);
 // Integer values (cell types, offsets, cluster ids); floating-point values must be whole

@@ -336,12 +336,14 @@ void LegacyReader::addFields(mesh::MeshBuilder& b) {
       throw FileError(src_, "cell array '", cellArrays_[load.array].name, "' does not have ",
                       numCells_, " values");
     b.addCellFieldStep(load.field, load.step,
-                       toFloats(cellArrays_[load.array].data, load.component, options_.threads));
+                       toFloats(cellArrays_[load.array].data, load.component, options_.threads,
+                                concat(src_, ": cell array '", cellArrays_[load.array].name, "'")));
   }
   const std::vector<std::string> cellData = dataCellArrayNames();
   for (const FieldLoad& load : planFields(src_, infos, split.points, &cellData))
     b.addFieldStep(load.field, load.step,
-                   toFloats(pointArrays_[load.array].data, load.component, options_.threads));
+                   toFloats(pointArrays_[load.array].data, load.component, options_.threads,
+                            concat(src_, ": point array '", pointArrays_[load.array].name, "'")));
 }
 
 mesh::UnstructuredMesh LegacyReader::build() {

@@ -209,9 +209,10 @@ class VtuReader {
     for (const Piece& p : pieces_) {
       pugi::xml_node a = findDataArray(p.node.child(cells ? "CellData" : "PointData"), name);
       if (!a) throw FileError(src_, "a piece lacks the ", what, " '", name, "'");
-      std::vector<float> v = toFloats(doc_.decode(a, cells ? p.numCells : p.numPoints,
-                                                  quoted(what, name), infos[load.array].components),
-                                      load.component, options_.threads);
+      std::vector<float> v =
+          toFloats(doc_.decode(a, cells ? p.numCells : p.numPoints, quoted(what, name),
+                               infos[load.array].components),
+                   load.component, options_.threads, concat(src_, ": ", quoted(what, name)));
       if (values.empty())
         values = std::move(v);
       else

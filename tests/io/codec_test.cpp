@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "io/array_plan.h"
 #include "io/base64.h"
+#include "io/numeric_array.h"
 #include "io/text_scan.h"
 #include "io/vtk_binary.h"
 #include "io/vtu_arrays.h"
@@ -188,6 +189,33 @@ TEST(ArrayPlan, MissingOrHugeStepsAreErrorsBeforeAnythingIsSized) {
   }
   o.step = 0;  // --time: the same check
   EXPECT_THROW(planFields("f.vtu", {{"p@t0", 1, false}, {"p@t5", 1, false}}, o), FileError);
+}
+
+// 1e12 + 0..1000 stored as int64 all become 999999995904 in float: a warning says so, once per
+// array; a span floats resolve, a constant array and float input say nothing.
+TEST(ToFloats, WarnsOnceWhenFloatsCannotResolveTheValues) {
+  std::vector<int64_t> big(11);
+  for (size_t i = 0; i < big.size(); ++i) big[i] = 1000000000000 + int64_t(100 * i);
+  auto view = [](ScalarType t, const auto& v) {
+    return NumericArray::view(t, 1, v.size(), reinterpret_cast<const uint8_t*>(v.data()), false);
+  };
+  testing::internal::CaptureStderr();
+  std::vector<float> f = toFloats(view(ScalarType::Int64, big), -1, 1, "a.vtu: point array 'big'");
+  toFloats(view(ScalarType::Int64, big), -1, 1, "a.vtu: point array 'big'");  // a second piece
+  const std::string warned = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(f.front(), f.back());
+  EXPECT_NE(warned.find("a.vtu: point array 'big': values span 1000 at 1e+12, where 32-bit "
+                        "floats step by 65536: they show as one value"),
+            std::string::npos)
+      << warned;
+  EXPECT_EQ(warned.find("point array 'big'"), warned.rfind("point array 'big'")) << warned;
+  const std::vector<double> fine = {101325.0, 101325.5, 101400.0}, flat = {7.0, 7.0};
+  const std::vector<float> floats = {1e12f, 1e12f + 65536.0f};
+  testing::internal::CaptureStderr();
+  toFloats(view(ScalarType::Float64, fine), -1, 1, "a.vtu: point array 'p'");
+  toFloats(view(ScalarType::Float64, flat), -1, 1, "a.vtu: point array 'c'");
+  toFloats(view(ScalarType::Float32, floats), -1, 1, "a.vtu: point array 'f'");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
 }  // namespace
