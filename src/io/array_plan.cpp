@@ -99,7 +99,8 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
   const char* b = request.data() + open + 1;
   const char* e = request.data() + request.size() - 1;
   auto [p, ec] = std::from_chars(b, e, k);
-  if (ec != std::errc() || p != e || k < 0) return std::nullopt;
+  // Decimal without leading zeros, as step numbers are: "v[01]" is an array of that name.
+  if (ec != std::errc() || p != e || k < 0 || (*b == '0' && e - b > 1)) return std::nullopt;
   return std::make_pair(std::string(request.substr(0, open)), k);
 }
 

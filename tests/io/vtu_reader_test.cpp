@@ -77,6 +77,12 @@ TEST(VtuReader, SelectsFieldsComponentsAndSteps) {
   EXPECT_EQ(m.fields[0].steps[0][5], 10.0f);
   EXPECT_FLOAT_EQ(m.fields[2].steps[0][5], float(5 * std::sqrt(6.0)));
   EXPECT_EQ(m.fields[1].steps[2][5], 205.0f);
+  // A component is written in decimal without leading zeros, as a step is: "velocity[01]" would
+  // be an array of that name, which the file lacks.
+  o.fields = {"velocity[01]"};
+  std::string msg =
+      fileErrorOf([&] { readMesh(fixturePath("mesh_appended_raw_zlib_h64.vtu"), o); });
+  EXPECT_NE(msg.find("'velocity[01]'"), std::string::npos) << msg;
 }
 
 TEST(VtuReader, NoFieldsWhenNotAsked) {
