@@ -75,19 +75,25 @@ void addGroup(std::vector<FieldLoad>& loads, const std::string& source, const Gr
 
 }  // namespace
 
+std::optional<uint64_t> plainDecimal(std::string_view text) {
+  uint64_t v = 0;
+  const char* b = text.data();
+  const char* e = b + text.size();
+  auto [p, ec] = std::from_chars(b, e, v);
+  if (text.empty() || ec != std::errc() || p != e || (*b == '0' && text.size() > 1))
+    return std::nullopt;
+  return v;
+}
+
 StepName splitStepName(std::string_view name) {
   size_t at = name.rfind("@t");
   if (at == std::string_view::npos || at == 0 || at + 2 == name.size())
     return {std::string(name), {}};
-  uint64_t step = 0;
-  const char* b = name.data() + at + 2;
-  const char* e = name.data() + name.size();
-  auto [p, ec] = std::from_chars(b, e, step);
   // Steps are written in plain decimal (vtu_writer, FORMATS.md): "p@t01" is a name, not step 1 of
   // "p", or it and "p@t1" would both claim that step.
-  if (ec != std::errc() || p != e || *b == '+' || *b == '-' || (*b == '0' && e - b > 1))
-    return {std::string(name), {}};
-  return {std::string(name.substr(0, at)), step};
+  const std::optional<uint64_t> step = plainDecimal(name.substr(at + 2));
+  if (!step) return {std::string(name), {}};
+  return {std::string(name.substr(0, at)), *step};
 }
 
 // "NAME[k]" -> (NAME, k).
@@ -95,13 +101,11 @@ std::optional<std::pair<std::string, int>> splitComponent(std::string_view reque
   size_t open = request.rfind('[');
   if (open == std::string_view::npos || request.size() < open + 3 || request.back() != ']')
     return std::nullopt;
-  int k = -1;
-  const char* b = request.data() + open + 1;
-  const char* e = request.data() + request.size() - 1;
-  auto [p, ec] = std::from_chars(b, e, k);
-  // Decimal without leading zeros, as step numbers are: "v[01]" is an array of that name.
-  if (ec != std::errc() || p != e || k < 0 || (*b == '0' && e - b > 1)) return std::nullopt;
-  return std::make_pair(std::string(request.substr(0, open)), k);
+  // Decimal without leading zeros or a sign, as step numbers are: "v[01]" is an array of that name.
+  const std::optional<uint64_t> k =
+      plainDecimal(request.substr(open + 1, request.size() - open - 2));
+  if (!k || *k > uint64_t(INT32_MAX)) return std::nullopt;
+  return std::make_pair(std::string(request.substr(0, open)), int(*k));
 }
 
 std::vector<FieldLoad> planFields(const std::string& source,

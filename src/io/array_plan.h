@@ -36,6 +36,10 @@ struct StepName {
 // "p@t12" -> ("p", 12); any other name -> (name, none).
 StepName splitStepName(std::string_view name);
 
+// Digits alone, without a sign or a leading zero ("0", "12"; not "012", "+1", "-0"): how step and
+// component numbers are written in array names and field requests.
+std::optional<uint64_t> plainDecimal(std::string_view text);
+
 // A field request "NAME[k]" -> (NAME, k); a request without a component -> none.
 std::optional<std::pair<std::string, int>> splitComponent(std::string_view request);
 

@@ -193,13 +193,14 @@ std::vector<float> vtuFieldStep(const std::string& file, const std::string& fiel
                     loads.size() == 1 ? " time step)" : " time steps)");
   const ArrayInfo& info = arrays[load->array];
   const std::string what = concat(kind, " array '", info.name, "'");
+  const ArrayName name{file, kind, info.name};
   std::vector<float> values;
   for (const VtuPiece& p : pieces) {
     pugi::xml_node a = findDataArray(p.node.child(cells ? "CellData" : "PointData"), info.name);
     if (!a) throw FileError(file, "a piece lacks the ", what);
     std::vector<float> v =
         toFloats(doc.decode(a, cells ? p.numCells : p.numPoints, what, info.components),
-                 load->component, options.threads, concat(file, ": ", what));
+                 load->component, options.threads, &name);
     values.insert(values.end(), v.begin(), v.end());
   }
   return values;

@@ -1,5 +1,7 @@
 #include "io/numeric_array.h"
 
+#include "io/array_plan.h"
+
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -73,19 +75,19 @@ struct Span {
 };
 
 // Values stored as 32-bit floats keep 24 bits: 1e12 + 0..1000 all become 999999995904, and a
-// render shows one colour without saying why. Warned once per array and run (pieces and steps
-// repeat it) when the span holds fewer than 256 float steps, the colour table's resolution.
-void warnIfFloatsCannotResolve(const Span& s, const std::string& what) {
-  if (what.empty() || !(s.lo < s.hi)) return;
+// render shows one colour without saying why. Warned when the span holds fewer than 256 float
+// steps, the colour table's resolution.
+void warnIfFloatsCannotResolve(const Span& s, const ArrayName* array) {
+  if (!array || !(s.lo < s.hi)) return;
   const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::abs(s.lo), std::abs(s.hi))) - 23);
   if (s.hi - s.lo >= 256 * ulp) return;
   static std::mutex mutex;
   static std::set<std::string> warned;
   std::lock_guard<std::mutex> lock(mutex);
-  if (!warned.insert(what).second) return;
+  if (!warned.insert(concat(array->kind, ' ', splitStepName(array->name).base)).second) return;
   const int levels = int((s.hi - s.lo) / ulp) + 1;
-  log::warning(what, ": values span ", s.hi - s.lo, " at ", s.hi, ", where 32-bit floats step by ",
-               ulp, ": ",
+  log::warning(array->source, ": ", array->kind, " array '", array->name, "': values span ",
+               s.hi - s.lo, " at ", s.hi, ", where 32-bit floats step by ", ulp, ": ",
                levels == 1 ? std::string("they show as one value")
                            : concat("at most ", levels, " levels show"),
                "; write the field less an offset to see it whole");
@@ -94,7 +96,7 @@ void warnIfFloatsCannotResolve(const Span& s, const std::string& what) {
 }  // namespace
 
 std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads,
-                            const std::string& what) {
+                            const ArrayName* name) {
   std::vector<float> out(a.tuples);
   const uint32_t nc = a.components;
   std::mutex mutex;
@@ -132,7 +134,7 @@ std::vector<float> toFloats(const NumericArray& a, int component, unsigned threa
         },
         threads, kParallelMin);
   });
-  warnIfFloatsCannotResolve(span, what);
+  warnIfFloatsCannotResolve(span, name);
   return out;
 }
 

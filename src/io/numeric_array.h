@@ -59,10 +59,16 @@ decltype(auto) visitArray(const NumericArray& a, F&& f) {
 
 // Values of a point field: component `component`, or for component < 0 the single value of a
 // one-component array or the magnitude of a vector. Non-finite values pass through. threads: 0
-// for all cores. With `what` ("FILE: point array 'p'"), warns once per run when the values' span
-// is too narrow for their magnitude in 32-bit floats (1e12 + 0..1000 becomes one value).
+// for all cores. With `name`, warns when the values' span is too narrow for their magnitude in
+// 32-bit floats (1e12 + 0..1000 becomes one value), once per run for each field (its pieces and
+// steps repeat the array).
+struct ArrayName {
+  std::string_view source;  // the file
+  std::string_view kind;    // "point" or "cell"
+  std::string_view name;    // the array's, "p@t3" for step 3 of field "p"
+};
 std::vector<float> toFloats(const NumericArray& a, int component, unsigned threads = 0,
-                            const std::string& what = {});
+                            const ArrayName* name = nullptr);
 // Tuples of three components as points (callers check components == 3).
 std::vector<glm::dvec3> toPoints(const NumericArray& a, unsigned threads = 0);
 // Integer values (cell types, offsets, cluster ids); floating-point values must be whole

@@ -331,19 +331,20 @@ void LegacyReader::addFields(mesh::MeshBuilder& b) {
   for (const auto& a : pointArrays_) infos.push_back({a.name, a.data.components, a.identifier});
   for (const auto& a : cellArrays_) cellInfos.push_back({a.name, a.data.components, a.identifier});
   const FieldSplit split = splitFieldRequests(infos, cellInfos, options_);
+  ArrayName array;  // names the array toFloats reads, for its precision warning
   for (const FieldLoad& load : planFields(src_, cellInfos, split.cells, nullptr, "cell")) {
     if (cellArrays_[load.array].data.tuples != numCells_)
       throw FileError(src_, "cell array '", cellArrays_[load.array].name, "' does not have ",
                       numCells_, " values");
     b.addCellFieldStep(load.field, load.step,
                        toFloats(cellArrays_[load.array].data, load.component, options_.threads,
-                                concat(src_, ": cell array '", cellArrays_[load.array].name, "'")));
+                                &(array = {src_, "cell", cellArrays_[load.array].name})));
   }
   const std::vector<std::string> cellData = dataCellArrayNames();
   for (const FieldLoad& load : planFields(src_, infos, split.points, &cellData))
     b.addFieldStep(load.field, load.step,
                    toFloats(pointArrays_[load.array].data, load.component, options_.threads,
-                            concat(src_, ": point array '", pointArrays_[load.array].name, "'")));
+                            &(array = {src_, "point", pointArrays_[load.array].name})));
 }
 
 mesh::UnstructuredMesh LegacyReader::build() {

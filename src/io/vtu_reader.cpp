@@ -206,13 +206,13 @@ class VtuReader {
     const std::string& name = infos[load.array].name;
     const char* what = cells ? "cell array" : "point array";
     std::vector<float> values;
+    const ArrayName array{src_, cells ? "cell" : "point", name};
     for (const Piece& p : pieces_) {
       pugi::xml_node a = findDataArray(p.node.child(cells ? "CellData" : "PointData"), name);
       if (!a) throw FileError(src_, "a piece lacks the ", what, " '", name, "'");
-      std::vector<float> v =
-          toFloats(doc_.decode(a, cells ? p.numCells : p.numPoints, quoted(what, name),
-                               infos[load.array].components),
-                   load.component, options_.threads, concat(src_, ": ", quoted(what, name)));
+      std::vector<float> v = toFloats(doc_.decode(a, cells ? p.numCells : p.numPoints,
+                                                  quoted(what, name), infos[load.array].components),
+                                      load.component, options_.threads, &array);
       if (values.empty())
         values = std::move(v);
       else

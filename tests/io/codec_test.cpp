@@ -199,23 +199,35 @@ TEST(ToFloats, WarnsOnceWhenFloatsCannotResolveTheValues) {
   auto view = [](ScalarType t, const auto& v) {
     return NumericArray::view(t, 1, v.size(), reinterpret_cast<const uint8_t*>(v.data()), false);
   };
+  const ArrayName step0{"a.vtu", "point", "big@t0"}, step1{"b.vtu", "point", "big@t1"};
   testing::internal::CaptureStderr();
-  std::vector<float> f = toFloats(view(ScalarType::Int64, big), -1, 1, "a.vtu: point array 'big'");
-  toFloats(view(ScalarType::Int64, big), -1, 1, "a.vtu: point array 'big'");  // a second piece
+  std::vector<float> f = toFloats(view(ScalarType::Int64, big), -1, 1, &step0);
+  toFloats(view(ScalarType::Int64, big), -1, 1, &step1);  // another piece's, or step's: said once
   const std::string warned = testing::internal::GetCapturedStderr();
   EXPECT_EQ(f.front(), f.back());
-  EXPECT_NE(warned.find("a.vtu: point array 'big': values span 1000 at 1e+12, where 32-bit "
+  EXPECT_NE(warned.find("a.vtu: point array 'big@t0': values span 1000 at 1e+12, where 32-bit "
                         "floats step by 65536: they show as one value"),
             std::string::npos)
       << warned;
-  EXPECT_EQ(warned.find("point array 'big'"), warned.rfind("point array 'big'")) << warned;
+  EXPECT_EQ(warned.find("point array"), warned.rfind("point array")) << warned;
   const std::vector<double> fine = {101325.0, 101325.5, 101400.0}, flat = {7.0, 7.0};
   const std::vector<float> floats = {1e12f, 1e12f + 65536.0f};
+  const ArrayName p{"a.vtu", "point", "p"}, c{"a.vtu", "point", "c"}, fl{"a.vtu", "point", "f"};
   testing::internal::CaptureStderr();
-  toFloats(view(ScalarType::Float64, fine), -1, 1, "a.vtu: point array 'p'");
-  toFloats(view(ScalarType::Float64, flat), -1, 1, "a.vtu: point array 'c'");
-  toFloats(view(ScalarType::Float32, floats), -1, 1, "a.vtu: point array 'f'");
+  toFloats(view(ScalarType::Float64, fine), -1, 1, &p);
+  toFloats(view(ScalarType::Float64, flat), -1, 1, &c);
+  toFloats(view(ScalarType::Float32, floats), -1, 1, &fl);
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  // A few levels left: said with their count. 1e6 + 0..0.25 in steps of 1/16 (floats' there).
+  const std::vector<double> few = {1e6, 1e6 + 0.125, 1e6 + 0.25};
+  const ArrayName q{"a.vtu", "cell", "q"};
+  testing::internal::CaptureStderr();
+  toFloats(view(ScalarType::Float64, few), -1, 1, &q);
+  const std::string levels = testing::internal::GetCapturedStderr();
+  EXPECT_NE(levels.find("a.vtu: cell array 'q': values span 0.25 at 1e+06, where 32-bit floats "
+                        "step by 0.0625: at most 5 levels show"),
+            std::string::npos)
+      << levels;
 }
 
 }  // namespace

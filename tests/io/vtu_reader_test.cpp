@@ -83,6 +83,11 @@ TEST(VtuReader, SelectsFieldsComponentsAndSteps) {
   std::string msg =
       fileErrorOf([&] { readMesh(fixturePath("mesh_appended_raw_zlib_h64.vtu"), o); });
   EXPECT_NE(msg.find("'velocity[01]'"), std::string::npos) << msg;
+  for (const char* signed_ : {"velocity[-0]", "velocity[+1]"}) {
+    o.fields = {signed_};
+    msg = fileErrorOf([&] { readMesh(fixturePath("mesh_appended_raw_zlib_h64.vtu"), o); });
+    EXPECT_NE(msg.find(std::string("'") + signed_ + "'"), std::string::npos) << msg;
+  }
 }
 
 TEST(VtuReader, NoFieldsWhenNotAsked) {

@@ -182,7 +182,7 @@ render::RenderSettings isoFrame(const mesh::UnstructuredMesh& m, const mesh::Fie
   s.transferFunction.lo = r.lo;
   s.transferFunction.hi = r.hi > r.lo ? r.hi : r.lo + 1;
   s.transferFunction.unitDistance = render::defaultUnitDistance(m.bounds());
-  s.dt = render::defaultStep(render::elementSizeSum(m).mean(), m.bounds());
+  s.dt = render::elementStep(render::elementSizeSum(m).mean());
   return s;
 }
 
