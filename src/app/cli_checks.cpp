@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace sm::app {
 
@@ -36,6 +38,22 @@ std::set<const CLI::Option*>& emptyAllowed() {
 CLI::Option* allowEmptyValue(CLI::Option* option) {
   emptyAllowed().insert(option);
   return option;
+}
+
+std::vector<std::string> parserArguments(int argc, const char* const* argv) {
+  int end = 1;  // arguments after "--" are not options
+  while (end < argc && std::string_view(argv[end]) != "--") ++end;
+  std::vector<std::string> args;
+  for (int i = argc - 1; i >= 1; --i) {
+    const std::string_view a = argv[i];
+    if (i < end && a.size() > 3 && a.rfind("--", 0) == 0 && a.find('=') == a.size() - 1) {
+      args.emplace_back();
+      args.emplace_back(a.substr(0, a.size() - 1));
+    } else {
+      args.emplace_back(a);
+    }
+  }
+  return args;
 }
 
 void refuseEmptyValues(const CLI::App& app) {

@@ -60,15 +60,8 @@ int main(int argc, char** argv) {
   sm::app::registerBench(app);
   sm::app::registerView(app);
   try {
-    // "--opacity=" would otherwise take the next argument's place in CLI11 and be reported as
-    // that argument being unexpected.
-    for (int i = 1; i < argc; ++i) {
-      const std::string_view a = argv[i];
-      if (a == "--") break;
-      if (a.size() > 3 && a.rfind("--", 0) == 0 && a.back() == '=' && a.find('=') == a.size() - 1)
-        throw CLI::ValidationError(std::string(a.substr(0, a.size() - 1)), "must not be empty");
-    }
-    app.parse(argc, argv);
+    app.name(argv[0]);
+    app.parse(sm::app::parserArguments(argc, argv));
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -180,6 +180,7 @@ usage "--step: must not be empty" "$sm" render ok.pvtu --step '' --out a.png
 usage "--opacity: must not be empty" "$sm" render ok.pvtu --opacity= --out a.png
 usage "--eye: must not be empty" "$sm" view ok.pvtu --headless --eye '' --script s.txt
 usage "--sizes: must not be empty" "$sm" bench render --sizes '' --exact ''
+expect "nope.vtu: cannot open" "$sm" bench render --exact= --coarser= --mesh nope.vtu --no-vtk --work-dir bw
 # No Vulkan driver at all (the loader finds none to load): said in words, not as a raw VkResult.
 # Without validation, whose messenger would add the loader's own lines.
 expect "no Vulkan driver could be loaded" env -u SHELLMARCH_VALIDATION VK_DRIVER_FILES=/nonexistent/icd.json \

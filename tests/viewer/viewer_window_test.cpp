@@ -5,6 +5,7 @@
 // no error.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -126,6 +127,16 @@ TEST(ViewerHeadless, FinerStepStopsAtAHundredthOfTheStart) {
   const double start = run(" --frames 1", "start");
   const double finest = run(" --script " + quote(script), "finer");
   EXPECT_NEAR(finest, start / 100, 1e-9 * start);
+  // "Coarser" stops at the data's diagonal, past which most rays would take no sample.
+  std::string coarser = "frame\n";
+  for (int i = 0; i < 60; ++i) coarser += "key ]\n";  // 1.25^60: far past the data
+  const std::string coarse = writeFile(dir, "coarser.txt", coarser + "frame\nquit\n");
+  CommandResult info = runCommand(shellmarch() + " info " + quote(mesh) + " --json", dir, "info");
+  const nlohmann::json b = nlohmann::json::parse(info.out)["bounds"];
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+    d2 += std::pow(b["hi"][k].get<double>() - b["lo"][k].get<double>(), 2);
+  EXPECT_NEAR(run(" --script " + quote(coarse), "coarser"), std::sqrt(d2), 1e-9 * std::sqrt(d2));
 }
 
 // Breaks the zlib stream of point array `array` in a .vtu written by `shellmarch generate`

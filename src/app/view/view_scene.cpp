@@ -229,9 +229,11 @@ void ViewScene::applyState(ViewState& state) {
   settings_.clipPlanes = job_.clipPlanes;
   if (state.cut) settings_.clipPlanes.push_back(state.cutPlane());
   // "Finer step" stops at a hundredth of the starting step, and zooming far out at the finest
-  // step that float positions along a ray resolve (render::checkStep).
+  // step that float positions along a ray resolve (render::checkStep); "coarser step" at the
+  // data's diagonal, past which most rays take no sample (render::checkStepNotBeyondData).
   state.dt = std::max({state.dt, finestInteractiveStep_,
                        render::finestStep(settings_.camera.eye, share_.wholeBounds)});
+  if (!share_.wholeBounds.empty) state.dt = std::min(state.dt, share_.wholeBounds.diagonal());
   settings_.dt = state.dt;
   settings_.width = renderWidth(state);
   settings_.height = renderHeight(state);
