@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -105,12 +106,8 @@ struct Frames {
 // A time sequence is numbered even when it turns out one frame long (--time all of a single
 // step, --time 3:3): a script that globs name_NNNN.png must not find name.png instead. (--orbit 1,
 // one frame from the camera given, is documented as the plain image.)
-bool asksForSequence(const RenderJob& job) {
-  return job.time == "all" || job.time.find(':') != std::string::npos;
-}
-
 bool numbersFrames(const RenderJob& job, size_t frames) {
-  return frames > 1 || asksForSequence(job);
+  return frames > 1 || selectsSequence(job.time);
 }
 
 // Statistics, extras and the image of a frame of the first run (collective).
@@ -188,16 +185,32 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ec && ra == rb;
 }
 
-// Whether `path` is one of the numbered files framePath makes of `base` (name_0012.png of
-// name.png): its name less a final _NNNN (four digits or more) is `base`.
-bool isFrameOf(const std::string& path, const std::string& base) {
-  const size_t slash = path.rfind('/'), dot = path.rfind('.');
-  const size_t end =
-      dot != std::string::npos && (slash == std::string::npos || dot > slash) ? dot : path.size();
-  size_t digits = end;
-  while (digits > 0 && path[digits - 1] >= '0' && path[digits - 1] <= '9') --digits;
-  if (end - digits < 4 || digits == 0 || path[digits - 1] != '_') return false;
-  return sameFile(path.substr(0, digits - 1) + path.substr(end), base);
+// The frame numbers `path` could hold: each run of four or more digits after a '_'.
+std::vector<uint64_t> frameNumbersIn(const std::string& path) {
+  std::vector<uint64_t> numbers;
+  for (size_t i = path.find('_'); i != std::string::npos; i = path.find('_', i + 1)) {
+    size_t e = i + 1;
+    while (e < path.size() && path[e] >= '0' && path[e] <= '9') ++e;
+    uint64_t n = 0;
+    if (e - i - 1 >= 4 &&
+        std::from_chars(path.data() + i + 1, path.data() + e, n).ec == std::errc())
+      numbers.push_back(n);
+  }
+  return numbers;
+}
+
+// The option of the job whose numbered frame files `path` would overwrite (nullptr: none): an
+// output's frame N is framePath(OUT, N) (the heatmaps' combined image framePath(PREFIX, N)_all).
+const char* numberedOutputAt(const RenderJob& job, const std::string& path) {
+  for (uint64_t n : frameNumbersIn(path)) {
+    for (const auto& [option, base] : outputFiles(job)) {
+      const bool heatmaps = option == std::string_view("--heatmaps");
+      const std::string file = heatmaps ? combinedHeatmapPath(framePath(job.heatmaps, n, true))
+                                        : framePath(base, n, true);
+      if (option != std::string_view("--stats-json") && sameFile(path, file)) return option;
+    }
+  }
+  return nullptr;
 }
 
 // Every file the job writes goes into a folder that exists, is not a folder itself, is not the
@@ -218,11 +231,10 @@ void checkOutputs(const RenderJob& job) {
         throw Error(option, ": '", path, "' is also the file of ", outputs[j].first);
   }
   // The statistics are one file; the others are numbered in a sequence, and may not be that file.
-  if (!job.statsJson.empty() && (asksForSequence(job) || job.orbit > 1))
-    for (const auto& [option, path] : outputs)
-      if (option != std::string_view("--stats-json") && isFrameOf(job.statsJson, path))
-        throw Error("--stats-json: '", job.statsJson, "' is also the name of a numbered frame of ",
-                    option, " ('", path, "')");
+  if (!job.statsJson.empty() && (selectsSequence(job.time) || job.orbit > 1))
+    if (const char* option = numberedOutputAt(job, job.statsJson))
+      throw Error("--stats-json: '", job.statsJson, "' is also the name of a numbered frame of ",
+                  option);
   if (!job.l2Heatmap.empty() && fileExtension(job.l2Heatmap) != ".png")
     throw Error("--l2-heatmap: '", job.l2Heatmap, "' must end in .png");
   std::error_code ec;

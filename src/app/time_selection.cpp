@@ -110,4 +110,8 @@ std::vector<uint64_t> selectSteps(const std::string& text, uint64_t available,
   return {step};
 }
 
+bool selectsSequence(const std::string& text) {
+  return text == "all" || text.find(':') != std::string::npos;
+}
+
 }  // namespace sm::app

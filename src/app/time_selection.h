@@ -22,4 +22,7 @@ namespace sm::app {
 std::vector<uint64_t> selectSteps(const std::string& text, uint64_t available,
                                   const std::vector<double>& times, Collectives& coll);
 
+// Whether `text` asks for a sequence (all, or a range), however many steps it turns out to hold.
+bool selectsSequence(const std::string& text);
+
 }  // namespace sm::app

@@ -109,9 +109,16 @@ expect "--stats-json: 'ok/ok_1.vtu' is the mesh being read" "$sm" render ok.pvtu
 expect "--dump-counts: 'ok.pvtu' is the mesh being read" "$sm" render ok.pvtu --dump-counts ok.pvtu --out a.png
 if ! cmp -s piece.bak ok/ok_1.vtu; then echo "FAIL: the input piece was overwritten"; fails=$((fails + 1)); fi
 expect "--stats-json: './a.png' is also the file of --out" "$sm" render ok.pvtu --stats-json ./a.png --out a.png
-# nor a numbered frame of a sequence (--orbit 2 writes a_0000.png and a_0001.png).
-expect "--stats-json: 'a_0001.png' is also the name of a numbered frame of --out ('a.png')" \
+# The statistics may not be a numbered frame of a sequence either (--orbit 2 writes a_0000.png and
+# a_0001.png, --heatmaps h h_0000_all.png ...).
+expect "--stats-json: 'a_0001.png' is also the name of a numbered frame of --out" \
   "$sm" render ok.pvtu --orbit 2 --stats-json a_0001.png --out a.png
+expect "--stats-json: 'h_0001_all.png' is also the name of a numbered frame of --heatmaps" \
+  "$sm" render ok.pvtu --orbit 2 --heatmaps h --stats-json h_0001_all.png --out a.png
+# --time all of a single step is a sequence all the same: seq_0000.png, not seq.png.
+"$sm" render ok.pvtu --time all --size 16x16 --out seq.png
+[ -e seq_0000.png ] && [ ! -e seq.png ] ||
+  { echo "FAIL: --time all of one step did not write seq_0000.png alone"; fails=$((fails + 1)); }
 # Without --step the step comes from the mesh: faults name the mesh or the view, not --step.
 sed -e 's/0 0 0 1 0 0 0 1 0 0 0 1/0 0 0 1 0 0 0 1 0 1 1 0/' -e 's/Name="f&#10;[^"]*"/Name="f"/' forged.vtu > flat.vtu
 expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.png

@@ -38,6 +38,12 @@ TEST(TimeSelection, IndicesRangesAndAll) {
   EXPECT_EQ(select("1:7:3", 8), (Steps{1, 4, 7}));  // the last included when the stride meets it
 }
 
+// `all` and ranges are sequences however many steps they hold (their files are numbered).
+TEST(TimeSelection, AllAndRangesAreSequences) {
+  for (const char* s : {"all", "0:0", "1:3:2"}) EXPECT_TRUE(selectsSequence(s)) << s;
+  for (const char* s : {"0", "3", "t=0.5"}) EXPECT_FALSE(selectsSequence(s)) << s;
+}
+
 TEST(TimeSelection, NearestTimeValue) {
   const std::vector<double> times{0.0, 0.25, 1.5, 2.0};
   EXPECT_EQ(select("t=0", 4, times), Steps{0});
