@@ -1,7 +1,10 @@
 #include "scene/transfer_function.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <mutex>
+#include <set>
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -117,6 +120,15 @@ std::string presetName(const nlohmann::json& map) {
              : std::string();
 }
 
+// Whether `file` is met for the first time in this run: an in-situ caller builds its transfer
+// function every frame, and one warning per file is enough.
+bool firstTime(const std::string& file) {
+  static std::mutex mutex;
+  static std::set<std::string> seen;
+  std::lock_guard<std::mutex> lock(mutex);
+  return seen.insert(file).second;
+}
+
 // The colour map `preset` names in a ParaView preset file (an array of maps, as ParaView exports
 // them, or one map), or without a name the first, with a warning when there are others.
 nlohmann::json choosePreset(nlohmann::json j, const std::string& src, const std::string& preset) {
@@ -125,9 +137,9 @@ nlohmann::json choosePreset(nlohmann::json j, const std::string& src, const std:
   std::string names;
   for (const auto& m : j) names += (names.empty() ? "'" : ", '") + presetName(m) + "'";
   if (preset.empty()) {
-    if (j.size() > 1)
+    if (j.size() > 1 && firstTime(src))
       log::warning(src, ": holds ", j.size(), " colour maps (", names,
-                   "); rendering the first; name one with --colormap ", src, ":NAME");
+                   "); rendering the first; name one as ", src, ":NAME");
     return j[0];
   }
   for (const auto& m : j)
@@ -183,10 +195,10 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   std::vector<std::pair<double, double>> opts;
   for (size_t i = 0; i < op.size(); i += 4) {
     // As --opacity refuses them: an opacity of 2 is a mistake, not a request for full opacity.
-    if (op[i + 1] < -1e-6 || op[i + 1] > 1.0 + 1e-6)
+    if (!(op[i + 1] >= 0.0 && op[i + 1] <= 1.0))
       throw FileError(src, "\"Points\": opacity ", op[i + 1], " of point ", i / 4 + 1,
                       " is outside [0, 1]");
-    opts.push_back({op[i], std::clamp(op[i + 1], 0.0, 1.0)});
+    opts.push_back({op[i], op[i + 1]});
   }
   std::stable_sort(opts.begin(), opts.end(), [](auto& a, auto& b) { return a.first < b.first; });
   if (!opts.empty()) {
@@ -241,8 +253,11 @@ TransferFunction makeTransferFunction(const std::string& colormap, int entries) 
   if (entries < 256) throw Error("transfer function: ", entries, " entries (at least 256)");
   if (fileExtension(colormap) == ".json")
     return parseParaViewColormap(readTextFile(colormap), colormap, entries);
-  // FILE.json:NAME picks a map of a preset file that holds several.
-  if (const size_t at = colormap.rfind(".json:"); at != std::string::npos) {
+  // FILE.json:NAME picks a map of a preset file that holds several (.JSON too, as for the file).
+  std::string lower = colormap;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (const size_t at = lower.rfind(".json:"); at != std::string::npos) {
     const std::string file = colormap.substr(0, at + 5), name = colormap.substr(at + 6);
     if (name.empty()) throw Error("--colormap: '", colormap, "' names no colour map after ':'");
     return parseParaViewColormap(readTextFile(file), file, entries, name);

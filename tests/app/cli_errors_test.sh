@@ -38,6 +38,8 @@ expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
 # Longer than the data: most rays would take no sample (an empty image); element-exact
 # integration takes no samples and accepts it.
 expect "--step: 100 is longer than the data's diagonal" "$sm" render ok.pvtu --step 100 --out a.png
+expect "--step: 100 is longer than the data's diagonal" "$sm" bench render --mesh ok.pvtu --step 100 \
+  --no-vtk --sizes 16 --work-dir bw
 "$sm" render ok.pvtu --step 100 --integration exact --size 16x16 --out exact.png ||
   { echo "FAIL: element-exact integration refuses a long step"; fails=$((fails + 1)); }
 expect "--view" "$sm" render ok.pvtu --view sideways --out a.png
@@ -128,7 +130,8 @@ expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 # A preset file of several maps: FILE.json:NAME picks one; a name it lacks is refused, naming those
 # it holds.
 echo '[{"Name": "a", "RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1]}, {"Name": "b", "RGBPoints": [0, 1, 0, 0, 1, 0, 0, 1]}]' > presets.json
-"$sm" render ok.pvtu --colormap presets.json:b --size 16x16 --out preset.png ||
+cp presets.json PRESETS.JSON  # the extension in capitals, as ParaView on Windows may write it
+"$sm" render ok.pvtu --colormap PRESETS.JSON:b --size 16x16 --out preset.png ||
   { echo "FAIL: --colormap presets.json:b"; fails=$((fails + 1)); }
 expect "presets.json: has no colour map named 'c' (it holds 'a', 'b')" "$sm" render ok.pvtu --colormap presets.json:c --out a.png
 # Cell data only (what finite-volume solvers write): a .vtu's renders without --field, its first

@@ -35,6 +35,25 @@ std::vector<std::vector<uint32_t>> elementTuples(const mesh::UnstructuredMesh& m
   return out;
 }
 
+// Points no element uses (a quadratic cell's mid-edge nodes) come along with keepUnusedPoints, in
+// their place in point order and with their field values, so that the one share taking them keeps
+// the whole mesh's field ranges; without it they are left out.
+TEST(ExtractClusters, KeepsThePointsNoElementUsesWhenAsked) {
+  auto m = clusteredCube(3);
+  const uint32_t stray = uint32_t(m.numPoints());
+  m.points.push_back({0.5, 0.5, 0.5});
+  for (auto& f : m.fields)
+    for (auto& step : f.steps) step.push_back(100.0f);
+  const auto without = extractClustersWithPointMap(m, {0});
+  EXPECT_EQ(std::count(without.originalPoint.begin(), without.originalPoint.end(), stray), 0);
+  const auto with = extractClustersWithPointMap(m, {0}, true);
+  ASSERT_EQ(with.originalPoint.size(), without.originalPoint.size() + 1);
+  EXPECT_EQ(with.originalPoint.back(), stray);  // the last point in the mesh's order
+  EXPECT_EQ(with.mesh.points.back(), glm::dvec3(0.5, 0.5, 0.5));
+  EXPECT_EQ(with.mesh.fields[0].steps[0].back(), 100.0f);
+  EXPECT_EQ(with.mesh.numCells(), without.mesh.numCells());
+}
+
 TEST(ExtractClusters, KeepsPointsFieldsAndClustersOfTheSelection) {
   const auto m = clusteredCube(5);
   for (int c = 0; c < 5; ++c) {

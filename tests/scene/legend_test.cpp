@@ -143,7 +143,7 @@ TEST(LegendTicks, ALinearScaleMarksTheEndsAndTheMiddle) {
   EXPECT_EQ(t[2].at, 1.0);
 }
 
-// Where each decade sits is where the colour map puts its value: the bar's coordinate of 10^e.
+// A constant field's legend would read "7 / 7 / 7": one mark in the middle instead.
 TEST(LegendTicks, ARangeWhoseEndsReadAlikeIsMarkedOnce) {
   TransferFunction tf = makeTransferFunction("viridis");
   tf.lo = tf.hi = 7;  // a constant field
@@ -155,6 +155,7 @@ TEST(LegendTicks, ARangeWhoseEndsReadAlikeIsMarkedOnce) {
   EXPECT_EQ(legendTicks(tf, 200, 1).size(), 1u);
 }
 
+// Where each decade sits is where the colour map puts its value: the bar's coordinate of 10^e.
 TEST(LegendTicks, ALogScaleMarksEachDecadeWhereTheMapPutsIt) {
   const TransferFunction tf = logViridis(0.5, 2000.0);
   const auto t = legendTicks(tf, 240, 1);

@@ -45,9 +45,13 @@ TEST(ParaViewColormap, APresetFileGivesTheMapItNamesOrTheFirstWithAWarning) {
   TransferFunction first = parseParaViewColormap(both, "m.json", 257);
   const std::string warned = testing::internal::GetCapturedStderr();
   EXPECT_NE(warned.find("m.json: holds 2 colour maps ('gray', 'red-blue'); rendering the first; "
-                        "name one with --colormap m.json:NAME"),
+                        "name one as m.json:NAME"),
             std::string::npos)
       << warned;
+  // Once per file in a run: an in-situ caller rebuilds its transfer function every frame.
+  testing::internal::CaptureStderr();
+  parseParaViewColormap(both, "m.json", 257);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
   EXPECT_EQ(first.table[256], glm::vec4(1, 1, 1, 1));
   TransferFunction named = parseParaViewColormap(both, "m.json", 257, "red-blue");
   EXPECT_EQ(named.table[0], glm::vec4(1, 0, 0, 0));

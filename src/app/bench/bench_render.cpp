@@ -36,6 +36,7 @@ render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w,
   s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
   s.dt =
       a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean(), sc.share.wholeBounds);
+  if (a.step > 0) render::checkStepNotBeyondData(a.step, sc.share.wholeBounds);
   s.earlyTermination = a.earlyTermination;
   return s;
 }
