@@ -126,14 +126,17 @@ TEST_P(CompressedBlocks, RoundTripWithPartialAndFullLastBlocks) {
 TEST_P(CompressedBlocks, ADamagedByteIsAFileErrorNamingTheBlock) {
   const std::vector<uint8_t> raw = sample(5000);
   const std::vector<uint8_t> enc = vtkBlocks(GetParam(), raw, 1024);
-  std::vector<size_t> at = {blockStart(enc, 2), blockStart(enc, 4)};
-  if (GetParam() != Compressor::LZ4) at.push_back((blockStart(enc, 3) + blockStart(enc, 4)) / 2);
-  for (size_t pos : at) {
+  // (position, the block it lies in); LZ4 has no checksum, so a byte inside its literals may
+  // decode to other values without an error, as in VTK: only block starts for it.
+  std::vector<std::pair<size_t, uint64_t>> at = {{blockStart(enc, 2), 2}, {blockStart(enc, 4), 4}};
+  if (GetParam() != Compressor::LZ4)
+    at.push_back({(blockStart(enc, 3) + blockStart(enc, 4)) / 2, 3});
+  for (const auto& [pos, block] : at) {
     SCOPED_TRACE(pos);
     std::vector<uint8_t> bad = enc;
     bad[pos] ^= 0x55;
     const std::string msg = errorOf(bad, raw.size());
-    EXPECT_EQ(msg.rfind("t.vtu: array 'x': compressed block ", 0), 0u) << msg;
+    EXPECT_EQ(msg.rfind(corruptBlock(block), 0), 0u) << msg;
     EXPECT_NE(msg.find(std::string(" is corrupt (") + compressorName(GetParam()) + ": "),
               std::string::npos)
         << msg;
