@@ -53,23 +53,12 @@ done
   printf 'CELL_DATA 3\nSCALARS cluster int\nLOOKUP_TABLE default\n0 1 0\n'
   printf 'POINT_DATA 13\nSCALARS f float\nLOOKUP_TABLE default\n0 0.1 0.2 0 0.1 0.2 0 0.1 0.2 0 0.1 0.2 100\n'
 } > stray.vtk
-plain=(--size 48x40 --view iso --colormap viridis)
+# Half an element as the step (the default's cap at the diagonal / 256 would take 20 times the
+# samples, and 2 ranks would then differ from 1 by compositing order's rounding).
+plain=(--size 48x40 --view iso --colormap viridis --step 0.5)
 mpi 1 "$sm" render stray.vtk "${plain[@]}" --out stray1.pfm 2>/dev/null
 mpi 2 "$sm" render stray.vtk "${plain[@]}" --out stray2.pfm 2>/dev/null
 "$sm" render stray.vtk "${plain[@]}" --range 0,100 --out stray-range.pfm 2>/dev/null
-# Two ranks composite in another order than one: float rounding (about 1e-7); a range without
-# the point's 100 would change pixels by most of the colour map.
-close() {
-  python3 - "$1" "$2" <<'PY'
-import struct, sys
-def load(path):
-    lines = open(path, 'rb').read().split(b'\n', 3)
-    w, h = map(int, lines[1].split())
-    return struct.unpack('<%df' % (w * h * 3), lines[3][:w * h * 12])
-a, b = load(sys.argv[1]), load(sys.argv[2])
-sys.exit(0 if max(abs(x - y) for x, y in zip(a, b)) <= 1e-5 else 1)
-PY
-}
 cmp stray1.pfm stray-range.pfm || fail "1 rank's default range leaves out a point no element uses"
-close stray1.pfm stray2.pfm || fail "2 ranks' default range is not 1 rank's (a point no element uses)"
+cmp stray1.pfm stray2.pfm || fail "2 ranks' default range is not 1 rank's (a point no element uses)"
 echo "multiblock: all checks passed"
