@@ -130,9 +130,14 @@ bool firstTime(const std::string& file) {
 }
 
 // The colour map `preset` names in a ParaView preset file (an array of maps, as ParaView exports
-// them, or one map), or without a name the first, with a warning when there are others.
-nlohmann::json choosePreset(nlohmann::json j, const std::string& src, const std::string& preset) {
-  if (!j.is_array()) j = nlohmann::json::array({std::move(j)});
+// them, or one map), or without a name the first, with a warning when there are others. By
+// reference: a copy of a deeply nested document recurses as deep as it nests.
+const nlohmann::json& choosePreset(const nlohmann::json& j, const std::string& src,
+                                   const std::string& preset) {
+  if (!j.is_array()) {
+    if (preset.empty() || presetName(j) == preset) return j;
+    throw FileError(src, "has no colour map named '", preset, "' (it holds '", presetName(j), "')");
+  }
   if (j.empty()) throw FileError(src, "empty colour-map array");
   std::string names;
   for (const auto& m : j) names += (names.empty() ? "'" : ", '") + presetName(m) + "'";
@@ -151,13 +156,13 @@ nlohmann::json choosePreset(nlohmann::json j, const std::string& src, const std:
 
 TransferFunction parseParaViewColormap(const std::string& text, const std::string& src, int entries,
                                        const std::string& preset) {
-  nlohmann::json j;
+  nlohmann::json parsed;
   try {
-    j = nlohmann::json::parse(text);
+    parsed = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw FileError(src, "not valid JSON: ", e.what());
   }
-  j = choosePreset(std::move(j), src, preset);
+  const nlohmann::json& j = choosePreset(parsed, src, preset);
   if (!j.is_object()) throw FileError(src, "not a ParaView colour map (expected an object)");
   auto numbers = [&](const char* key) {
     std::vector<double> v;
