@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdio>
 #include <mutex>
+#include <set>
 
 #include "common/error.h"
 
@@ -27,6 +28,12 @@ Level level() {
 void setPrefix(const std::string& prefix) {
   std::lock_guard lock(g_mutex);
   g_prefix = prefix;
+}
+bool firstTime(const std::string& key) {
+  static std::mutex mutex;
+  static std::set<std::string> seen;
+  std::lock_guard lock(mutex);
+  return seen.insert(key).second;
 }
 void warningLine(const std::string& line) {
   emit("warning: ", line);

@@ -16,6 +16,9 @@ Level level();
 void setPrefix(const std::string& prefix);
 
 void warningLine(const std::string& line);
+// True the first time `key` is passed in this process: for warnings said once per run, however
+// often the input that causes them is read (pieces, steps, frames).
+bool firstTime(const std::string& key);
 void infoLine(const std::string& line);
 void debugLine(const std::string& line);
 

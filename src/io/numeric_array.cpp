@@ -9,7 +9,6 @@
 #include <limits>
 #include <mutex>
 #include <new>
-#include <set>
 #include <string>
 
 #include "common/error.h"
@@ -81,10 +80,9 @@ void warnIfFloatsCannotResolve(const Span& s, const ArrayName* array) {
   if (!array || !(s.lo < s.hi)) return;
   const double ulp = std::ldexp(1.0, std::ilogb(std::max(std::abs(s.lo), std::abs(s.hi))) - 23);
   if (s.hi - s.lo >= 256 * ulp) return;
-  static std::mutex mutex;
-  static std::set<std::string> warned;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (!warned.insert(concat(array->kind, ' ', splitStepName(array->name).base)).second) return;
+  if (!log::firstTime(
+          concat("float precision ", array->kind, ' ', splitStepName(array->name).base)))
+    return;
   const int levels = int((s.hi - s.lo) / ulp) + 1;
   log::warning(array->source, ": ", array->kind, " array '", array->name, "': values span ",
                s.hi - s.lo, " at ", s.hi, ", where 32-bit floats step by ", ulp, ": ",

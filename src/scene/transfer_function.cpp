@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <mutex>
-#include <set>
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -120,15 +118,6 @@ std::string presetName(const nlohmann::json& map) {
              : std::string();
 }
 
-// Whether `file` is met for the first time in this run: an in-situ caller builds its transfer
-// function every frame, and one warning per file is enough.
-bool firstTime(const std::string& file) {
-  static std::mutex mutex;
-  static std::set<std::string> seen;
-  std::lock_guard<std::mutex> lock(mutex);
-  return seen.insert(file).second;
-}
-
 // The colour map `preset` names in a ParaView preset file (an array of maps, as ParaView exports
 // them, or one map), or without a name the first, with a warning when there are others. By
 // reference: a copy of a deeply nested document recurses as deep as it nests.
@@ -142,7 +131,8 @@ const nlohmann::json& choosePreset(const nlohmann::json& j, const std::string& s
   std::string names;
   for (const auto& m : j) names += (names.empty() ? "'" : ", '") + presetName(m) + "'";
   if (preset.empty()) {
-    if (j.size() > 1 && firstTime(src))
+    // Once per file: an in-situ caller builds its transfer function every frame.
+    if (j.size() > 1 && log::firstTime("colormap presets " + src))
       log::warning(src, ": holds ", j.size(), " colour maps (", names,
                    "); rendering the first; name one as ", src, ":NAME");
     return j[0];
