@@ -9,8 +9,7 @@
 # OUT.tar is written uncompressed (what the test does; xz takes two minutes on two cores).
 #
 # On the other machine: shellmarch/run PROGRAM [ARGS...] runs a packed program, and
-# ci/portable-gpu-check.sh runs the GPU test cases and `bench render` (docs/BENCHMARKS.md, "On a
-# GPU").
+# ci/gpu-check.sh runs the GPU test cases and the benchmarks (docs/BENCHMARKS.md, "On a GPU").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -60,7 +59,14 @@ mv "$root/lib/libstdc++.so.6" "$root/lib/libgcc_s.so.1" "$root/cxx/"
 for b in "${bins[@]}"; do objdump -T "$b"; done | grep -oE 'GLIBCXX_[0-9.]+' | sort -uV | tail -1 \
   > "$root/cxx/version"
 
-# Which cases of those binaries are GPU cases, as ctest knows them, for ci/portable-gpu-check.sh.
+# glvnd's libraries, which NVIDIA's Vulkan driver loads through the machine's loader paths:
+# ci/gpu-check.sh installs them where the machine has none.
+mkdir -p "$root/glvnd"
+for f in libGLdispatch.so.0 libGLX.so.0 libEGL.so.1 libGL.so.1 libOpenGL.so.0; do
+  if [ -f "/usr/lib/x86_64-linux-gnu/$f" ]; then cp -L "/usr/lib/x86_64-linux-gnu/$f" "$root/glvnd/"; fi
+done
+
+# Which cases of those binaries are GPU cases, as ctest knows them, for ci/gpu-check.sh.
 (cd "$build" && ctest -L gpu --show-only=json-v1) | python3 -c '
 import collections, json, sys
 cases = collections.defaultdict(list)

@@ -1,24 +1,36 @@
 # Compiles GLSL compute shaders to SPIR-V at build time, validates them with spirv-val and embeds
 # them in a C++ source so that binaries need no shader files at run time (no .spv in git).
 #
-# shellmarch_embed_shaders(TARGET t NAMESPACE ns HEADER name.h SOURCES a.comp ... INCLUDE_DIRS d ...)
+# shellmarch_embed_shaders(TARGET t NAMESPACE ns HEADER name.h SOURCES a.comp ... INCLUDE_DIRS d ...
+#                          [SUFFIX s DEFINES NAME ...])
 # generates name.h declaring `std::span<const uint32_t> ns::<stem>()` for each shader, and adds the
-# generated sources to target t.
+# generated sources to target t. The stem is the file name without extension for compute shaders
+# (a.comp: a) and with it for the other stages (b.rgen: b_rgen, c.rint: c_rint); SUFFIX is appended
+# to every stem, for a variant compiled with the macros in DEFINES.
 set(_SHELLMARCH_EMBED_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/spv_to_cpp.cmake")
 
 function(shellmarch_embed_shaders)
-  cmake_parse_arguments(ARG "" "TARGET;NAMESPACE;HEADER" "SOURCES;INCLUDE_DIRS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TARGET;NAMESPACE;HEADER;SUFFIX" "SOURCES;INCLUDE_DIRS;DEFINES" ${ARGN})
   set(outdir "${CMAKE_CURRENT_BINARY_DIR}/shaders_gen")
   file(MAKE_DIRECTORY "${outdir}")
   set(include_flags "")
   foreach(dir ${ARG_INCLUDE_DIRS})
     list(APPEND include_flags "-I${dir}")
   endforeach()
+  foreach(def ${ARG_DEFINES})
+    list(APPEND include_flags "-D${def}")
+  endforeach()
   set(decls "")
   set(generated "")
   foreach(src ${ARG_SOURCES})
     get_filename_component(abs "${src}" ABSOLUTE)
     get_filename_component(stem "${src}" NAME_WE)
+    get_filename_component(ext "${src}" LAST_EXT)
+    if(NOT ext STREQUAL ".comp")
+      string(SUBSTRING "${ext}" 1 -1 stage)
+      set(stem "${stem}_${stage}")
+    endif()
+    set(stem "${stem}${ARG_SUFFIX}")
     set(spv "${outdir}/${stem}.spv")
     set(cpp "${outdir}/${stem}.spv.cpp")
     add_custom_command(

@@ -76,7 +76,7 @@ void dumpCounts(DeepCompositor& compositor, const std::string& path, int size) {
 
 void runAll(MpiCommunicator& comm, const RunOptions& o) {
   vk::ContextOptions co;
-  co.requireRayQuery = false;
+  co.rayTracing = false;
   vk::Context ctx(co);
   nlohmann::json rows = nlohmann::json::array();
   const int R = comm.size();

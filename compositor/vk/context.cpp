@@ -109,7 +109,8 @@ bool envFlag(const char* name) {
   return v && *v && std::strcmp(v, "0") != 0;
 }
 
-std::vector<DeviceReport> Context::listDevices(const ContextOptions& o) {
+std::vector<DeviceReport> Context::listDevices(const ContextOptions& options) {
+  const ContextOptions o = withHiddenFromEnvironment(options);
   VkInstance inst = plainInstance();
   uint32_t n = 0;
   vkEnumeratePhysicalDevices(inst, &n, nullptr);
@@ -119,14 +120,18 @@ std::vector<DeviceReport> Context::listDevices(const ContextOptions& o) {
   for (uint32_t i = 0; i < n; ++i) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(devs[i], &p);
-    out.push_back({i, p.deviceName, p.deviceType, missingFor(devs[i], o)});
+    TracerSupport s = tracerSupport(devs[i], o);
+    std::vector<std::string> tracers;
+    if (s.query()) tracers.push_back(tracerName(Tracer::Query));
+    if (s.pipeline()) tracers.push_back(tracerName(Tracer::Pipeline));
+    out.push_back({i, p.deviceName, p.deviceType, missingFor(devs[i], o), tracers});
   }
   vkDestroyInstance(inst, nullptr);
   return out;
 }
 
 Context::Context(const ContextOptions& options) {
-  ContextOptions o = options;
+  ContextOptions o = withHiddenFromEnvironment(options);
   o.validation = o.validation || envFlag("SHELLMARCH_VALIDATION");
   forceStaging_ = o.forceStaging || envFlag("SHELLMARCH_FORCE_STAGING");
   try {
@@ -248,6 +253,8 @@ void Context::pickDevice(const ContextOptions& o) {
   if (best < 0) {
     std::string what = o.device.empty() ? std::string("no Vulkan device has what shellmarch needs")
                                         : "--device " + o.device + ": no usable device matches";
+    if (o.rayTracing && o.tracer != Tracer::Auto)
+      what += std::string(" for the ") + tracerName(o.tracer) + " tracer";
     if (n == 0) what = "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)";
     throw VulkanError(what + report.str(), VK_ERROR_FEATURE_NOT_PRESENT);
   }
@@ -287,26 +294,31 @@ void Context::createDevice(const ContextOptions& o) {
     throw VulkanError("the device has no compute queue", VK_ERROR_FEATURE_NOT_PRESENT);
   queueFamily_ = uint32_t(family);
 
-  FeatureChain have(o.requireRayQuery);
+  // Every tracer the device offers is enabled, the chosen one being the default: a renderer may
+  // take the other (tests compare the two on one scene).
+  const TracerSupport support =
+      o.rayTracing ? tracerSupport(physical_, o) : TracerSupport{{"-"}, {"-"}};
+  tracer_ = chooseTracer(o, support);
+  const bool query = support.query(), pipeline = support.pipeline();
+  FeatureChain have(o.rayTracing, query, pipeline);
   vkGetPhysicalDeviceFeatures2(physical_, &have.f2);
-  FeatureChain want(o.requireRayQuery);
+  FeatureChain want(o.rayTracing, query, pipeline);
   want.f2.features.shaderInt64 = VK_TRUE;
   want.f2.features.shaderFloat64 = have.f2.features.shaderFloat64;
   float64_ = have.f2.features.shaderFloat64;
   want.v12.bufferDeviceAddress = VK_TRUE;
   want.v12.scalarBlockLayout = VK_TRUE;
   want.v12.hostQueryReset = have.v12.hostQueryReset;
-  if (o.requireRayQuery) {
-    want.as.accelerationStructure = VK_TRUE;
-    want.rq.rayQuery = VK_TRUE;
-    rayQuery_ = true;
-  }
+  if (o.rayTracing) want.as.accelerationStructure = VK_TRUE;
+  want.rq.rayQuery = rayQuery_ = query;
+  want.rt.rayTracingPipeline = rayTracingPipeline_ = pipeline;
+  if (pipeline) readRayTracingLimits(o);
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   qci.queueFamilyIndex = queueFamily_;
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
-  auto ext = requiredDeviceExtensions(o);
+  auto ext = deviceExtensions(o, support);
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &want.f2;
   dci.queueCreateInfoCount = 1;
@@ -320,7 +332,12 @@ void Context::createDevice(const ContextOptions& o) {
     fn =
         reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
   };
-  if (o.requireRayQuery) {
+  if (pipeline) {
+    load(fn_.createRayTracingPipelines, "vkCreateRayTracingPipelinesKHR");
+    load(fn_.getRayTracingShaderGroupHandles, "vkGetRayTracingShaderGroupHandlesKHR");
+    load(fn_.cmdTraceRays, "vkCmdTraceRaysKHR");
+  }
+  if (o.rayTracing) {
     load(fn_.createAccelerationStructure, "vkCreateAccelerationStructureKHR");
     load(fn_.destroyAccelerationStructure, "vkDestroyAccelerationStructureKHR");
     load(fn_.getAccelerationStructureBuildSizes, "vkGetAccelerationStructureBuildSizesKHR");
@@ -338,6 +355,19 @@ void Context::createDevice(const ContextOptions& o) {
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = queueFamily_;
   SM_VK(vkCreateCommandPool(device_, &pci, nullptr, &pool_));
+}
+
+void Context::readRayTracingLimits(const ContextOptions& o) {
+  VkPhysicalDeviceRayTracingPipelinePropertiesKHR rt{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+  VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &rt};
+  vkGetPhysicalDeviceProperties2(physical_, &p2);
+  rtLimits_.handleSize = rt.shaderGroupHandleSize;
+  rtLimits_.handleAlignment = std::max(rt.shaderGroupHandleAlignment, 1u);
+  rtLimits_.baseAlignment = std::max(rt.shaderGroupBaseAlignment, 1u);
+  rtLimits_.maxRecursionDepth = rt.maxRayRecursionDepth;
+  rtLimits_.maxInvocations = rt.maxRayDispatchInvocationCount;
+  rtLimits_.raygenSubgroups = raygenSubgroups(physical_, o);
 }
 
 uint32_t Context::memoryType(uint32_t bits, VkMemoryPropertyFlags want,

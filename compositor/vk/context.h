@@ -21,11 +21,30 @@
 
 namespace sm::vk {
 
+// How shell crossings are traced (docs/ARCHITECTURE.md, "Tracers"): ray queries from compute
+// shaders, or a ray tracing pipeline (ray generation, intersection and any-hit shaders) where the
+// device offers only that (NVIDIA's GPUs without RT cores). Auto takes ray queries where offered.
+enum class Tracer { Auto, Query, Pipeline };
+const char* tracerName(Tracer t);  // "auto", "query", "pipeline"
+// Throws std::invalid_argument naming `what` (an option) for anything but those three.
+Tracer parseTracer(const std::string& what, const std::string& text);
+
+// Capabilities a context treats as absent although the device has them (ContextOptions::hide, or
+// SHELLMARCH_HIDE=ray_query,ray_tracing_pipeline,raygen_subgroups): tests of the choices made on
+// devices that lack them.
+enum HideBits : uint32_t {
+  kHideRayQuery = 1,
+  kHideRayTracingPipeline = 2,
+  kHideRaygenSubgroups = 4,
+};
+
 struct ContextOptions {
-  bool validation = false;      // also forced on by SHELLMARCH_VALIDATION=1
-  bool requireRayQuery = true;  // ray queries + acceleration structures (renderer); not needed
-                                // by the compositor alone
-  std::string device;           // "" = best, "N" = index N, else a substring of the name
+  bool validation = false;  // also forced on by SHELLMARCH_VALIDATION=1
+  bool rayTracing = true;   // acceleration structures and a tracer (renderer); not needed by the
+                            // compositor alone
+  Tracer tracer = Tracer::Auto;
+  uint32_t hide = 0;   // HideBits, or'ed with SHELLMARCH_HIDE's
+  std::string device;  // "" = best, "N" = index N, else a substring of the name
   std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a window
   bool swapchain = false;                       // enable VK_KHR_swapchain
   bool forceStaging = false;                    // never map device buffers: exercise staging copies
@@ -41,7 +60,18 @@ struct DeviceFunctions {
   PFN_vkCmdWriteAccelerationStructuresPropertiesKHR cmdWriteAccelerationStructuresProperties =
       nullptr;
   PFN_vkCmdCopyAccelerationStructureKHR cmdCopyAccelerationStructure = nullptr;
+  PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
+  PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
+  PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT setDebugUtilsObjectName = nullptr;
+};
+
+// What the shader binding table and trace calls of a ray tracing pipeline must respect.
+struct RayTracingLimits {
+  uint32_t handleSize = 0, handleAlignment = 1, baseAlignment = 1;
+  uint32_t maxRecursionDepth = 0;
+  uint32_t maxInvocations = 0;   // per vkCmdTraceRaysKHR
+  bool raygenSubgroups = false;  // subgroup basic, vote and arithmetic in ray generation shaders
 };
 
 struct DeviceReport {
@@ -49,6 +79,7 @@ struct DeviceReport {
   std::string name;
   VkPhysicalDeviceType type;
   std::vector<std::string> missing;  // empty = usable
+  std::vector<std::string> tracers;  // the tracers it offers ("query", "pipeline")
 };
 
 class Context {
@@ -68,7 +99,13 @@ class Context {
   std::string deviceName() const { return props_.deviceName; }
   bool isCpu() const { return props_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
   bool hasFloat64() const { return float64_; }
+  // The tracers enabled: every one the device offers and the options do not hide.
   bool hasRayQuery() const { return rayQuery_; }
+  bool hasRayTracingPipeline() const { return rayTracingPipeline_; }
+  // The tracer renderers of this context use: ContextOptions::tracer, or for Auto ray queries
+  // where the device offers them, else the pipeline. Auto without rayTracing: Auto.
+  Tracer tracer() const { return tracer_; }
+  const RayTracingLimits& rayTracingLimits() const { return rtLimits_; }
   bool forceStaging() const { return forceStaging_; }
   uint32_t subgroupSize() const { return subgroupSize_; }
   // The most primitives one bottom-level acceleration structure may hold (maxPrimitiveCount; 0
@@ -114,6 +151,7 @@ class Context {
   void createInstance(const ContextOptions& o);
   void pickDevice(const ContextOptions& o);
   void createDevice(const ContextOptions& o);
+  void readRayTracingLimits(const ContextOptions& o);
   static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT types,
                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
@@ -130,6 +168,9 @@ class Context {
   VkPhysicalDeviceMemoryProperties memProps_{};
   DeviceFunctions fn_;
   bool validation_ = false, debugUtils_ = false, float64_ = false, rayQuery_ = false;
+  bool rayTracingPipeline_ = false;
+  Tracer tracer_ = Tracer::Auto;
+  RayTracingLimits rtLimits_;
   bool forceStaging_ = false;
   uint32_t subgroupSize_ = 1;
   uint64_t asPrimitiveLimit_ = 0;

@@ -8,21 +8,33 @@
 
 namespace sm::vk {
 
-ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
-    : ctx_(&ctx), pushBytes_(d.pushConstantBytes) {
-  VkDevice dev = ctx.device();
-  VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  smci.codeSize = d.spirv.size_bytes();
-  smci.pCode = d.spirv.data();
-  VkShaderModule mod;
-  SM_VK(vkCreateShaderModule(dev, &smci, nullptr, &mod));
-  module_ = DeviceHandle<VkShaderModule>(dev, mod, vkDestroyShaderModule);
-  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, uint64_t(mod), d.name);
+Specialization::Specialization(const std::vector<SpecConstant>& constants) {
+  for (const SpecConstant& c : constants) {
+    entries.push_back({c.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+    values.push_back(c.value);
+  }
+  vk = {uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
+}
 
+DeviceHandle<VkShaderModule> makeShaderModule(const Context& ctx, std::span<const uint32_t> spirv,
+                                              const std::string& name) {
+  VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  smci.codeSize = spirv.size_bytes();
+  smci.pCode = spirv.data();
+  VkShaderModule mod;
+  SM_VK(vkCreateShaderModule(ctx.device(), &smci, nullptr, &mod));
+  ctx.setName(VK_OBJECT_TYPE_SHADER_MODULE, uint64_t(mod), name);
+  return DeviceHandle<VkShaderModule>(ctx.device(), mod, vkDestroyShaderModule);
+}
+
+PipelineBindings::PipelineBindings(const Context& ctx, VkShaderStageFlags stages,
+                                   uint32_t pushConstantBytes, bool accelerationStructure)
+    : ctx_(&ctx), stages_(stages) {
+  VkDevice dev = ctx.device();
   std::vector<VkDescriptorSetLayout> setLayouts;
-  if (d.accelerationStructure) {
-    VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1,
-                                   VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  if (accelerationStructure) {
+    VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1, stages,
+                                   nullptr};
     VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     lci.bindingCount = 1;
     lci.pBindings = &b;
@@ -45,38 +57,18 @@ ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
     ai.pSetLayouts = &sl;
     SM_VK(vkAllocateDescriptorSets(dev, &ai, &set_));
   }
-  VkPushConstantRange pcr{VK_SHADER_STAGE_COMPUTE_BIT, 0, d.pushConstantBytes};
+  VkPushConstantRange pcr{stages, 0, pushConstantBytes};
   VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   plci.setLayoutCount = uint32_t(setLayouts.size());
   plci.pSetLayouts = setLayouts.data();
-  plci.pushConstantRangeCount = d.pushConstantBytes ? 1 : 0;
+  plci.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
   plci.pPushConstantRanges = &pcr;
   VkPipelineLayout pl;
   SM_VK(vkCreatePipelineLayout(dev, &plci, nullptr, &pl));
   layout_ = DeviceHandle<VkPipelineLayout>(dev, pl, vkDestroyPipelineLayout);
-
-  std::vector<VkSpecializationMapEntry> entries;
-  std::vector<uint32_t> values;
-  for (const SpecConstant& c : d.specialization) {
-    entries.push_back({c.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-    values.push_back(c.value);
-  }
-  VkSpecializationInfo si{uint32_t(entries.size()), entries.data(),
-                          values.size() * sizeof(uint32_t), values.data()};
-  VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  cci.stage.module = mod;
-  cci.stage.pName = "main";
-  cci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
-  cci.layout = pl;
-  VkPipeline p;
-  SM_VK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cci, nullptr, &p));
-  pipeline_ = DeviceHandle<VkPipeline>(dev, p, vkDestroyPipeline);
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
 }
 
-void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) {
+void PipelineBindings::setAccelerationStructure(VkAccelerationStructureKHR tlas) {
   VkWriteDescriptorSetAccelerationStructureKHR as{
       VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
   as.accelerationStructureCount = 1;
@@ -90,14 +82,38 @@ void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) 
   vkUpdateDescriptorSets(ctx_->device(), 1, &w, 0, nullptr);
 }
 
+void PipelineBindings::bind(VkCommandBuffer cmd, VkPipelineBindPoint point, const void* push,
+                            uint32_t pushBytes) const {
+  if (set_) vkCmdBindDescriptorSets(cmd, point, layout_.get(), 0, 1, &set_, 0, nullptr);
+  if (pushBytes) vkCmdPushConstants(cmd, layout_.get(), stages_, 0, pushBytes, push);
+}
+
+ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
+    : ctx_(&ctx),
+      module_(makeShaderModule(ctx, d.spirv, d.name)),
+      bindings_(ctx, VK_SHADER_STAGE_COMPUTE_BIT, d.pushConstantBytes, d.accelerationStructure) {
+  Specialization spec(d.specialization);
+  VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  cci.stage.module = module_.get();
+  cci.stage.pName = "main";
+  cci.stage.pSpecializationInfo = spec.info();
+  cci.layout = bindings_.layout();
+  VkPipeline p;
+  SM_VK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &cci, nullptr, &p));
+  pipeline_ = DeviceHandle<VkPipeline>(ctx.device(), p, vkDestroyPipeline);
+  ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
+}
+
+void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) {
+  bindings_.setAccelerationStructure(tlas);
+}
+
 void ComputePipeline::dispatch(VkCommandBuffer cmd, uint32_t gx, uint32_t gy, uint32_t gz,
                                const void* push, uint32_t pushBytes) const {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  if (set_)
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
-                            nullptr);
-  if (pushBytes)
-    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
+  bindings_.bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, push, pushBytes);
   if (gx && gy && gz) vkCmdDispatch(cmd, gx, gy, gz);
 }
 

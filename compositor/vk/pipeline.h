@@ -1,7 +1,8 @@
 // Compute pipelines built from embedded SPIR-V, specialised to the scene with specialization
 // constants, parameters passed as push constants
 // (buffer addresses and small values). A pipeline that traces rays owns one descriptor set with the
-// top-level acceleration structure at set 0, binding 0.
+// top-level acceleration structure at set 0, binding 0 (ray_tracing_pipeline.h: the same for ray
+// tracing pipelines).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,43 @@ struct PipelineDesc {
   uint32_t pushConstantBytes = 0;
   bool accelerationStructure = false;  // set 0, binding 0
 };
+
+// A shader's specialisation, in the form Vulkan takes (pointers into this object: keep it alive
+// and in place while the pipeline is created).
+struct Specialization {
+  explicit Specialization(const std::vector<SpecConstant>& constants);
+  Specialization(const Specialization&) = delete;
+  const VkSpecializationInfo* info() const { return entries.empty() ? nullptr : &vk; }
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<uint32_t> values;
+  VkSpecializationInfo vk{};
+};
+
+// What every pipeline of the renderer binds: push constants and, for a pipeline that traces
+// rays, one descriptor set holding the top-level acceleration structure (set 0, binding 0).
+class PipelineBindings {
+ public:
+  PipelineBindings() = default;
+  PipelineBindings(const Context& ctx, VkShaderStageFlags stages, uint32_t pushConstantBytes,
+                   bool accelerationStructure);
+  VkPipelineLayout layout() const { return layout_.get(); }
+  void setAccelerationStructure(VkAccelerationStructureKHR tlas);
+  // Binds the descriptor set (if any) and pushes `pushBytes` of constants.
+  void bind(VkCommandBuffer cmd, VkPipelineBindPoint point, const void* push,
+            uint32_t pushBytes) const;
+
+ private:
+  const Context* ctx_ = nullptr;
+  VkShaderStageFlags stages_ = 0;
+  DeviceHandle<VkDescriptorSetLayout> setLayout_;
+  DeviceHandle<VkPipelineLayout> layout_;
+  DeviceHandle<VkDescriptorPool> pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+// A shader module of `spirv`, debug-named.
+DeviceHandle<VkShaderModule> makeShaderModule(const Context& ctx, std::span<const uint32_t> spirv,
+                                              const std::string& name);
 
 inline uint32_t groupsFor(uint64_t items, uint32_t groupSize) {
   return uint32_t((items + groupSize - 1) / groupSize);
@@ -76,12 +114,8 @@ class ComputePipeline {
 
   const Context* ctx_ = nullptr;
   DeviceHandle<VkShaderModule> module_;
-  DeviceHandle<VkDescriptorSetLayout> setLayout_;
-  DeviceHandle<VkPipelineLayout> layout_;
+  PipelineBindings bindings_;
   DeviceHandle<VkPipeline> pipeline_;
-  DeviceHandle<VkDescriptorPool> pool_;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
-  uint32_t pushBytes_ = 0;
 };
 
 // GPU timestamps for per-stage timing.

@@ -2,8 +2,20 @@
 // Marching pass: per pixel, integrate the segments traversal stored and write one fragment per
 // segment into the pixel's list (two-pass lists: the list is exactly as long as the segments).
 #extension GL_GOOGLE_include_directive : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
-#extension GL_KHR_shader_subgroup_basic : require
+#include "stage_compute.glsl"
+#include "scene_access.glsl"
+#include "subgroup_ops.glsl"
+#include "counters.glsl"
+#include "ray_frame.glsl"
+#include "interpolate.glsl"
+#include "walk_state.glsl"
+#include "transfer.glsl"
+#include "element_step.glsl"
+#include "march.glsl"
+#include "fragment_list.glsl"
+#include "shell_hit.glsl"
+#include "shell_crossing.glsl"
+#include "shell_entry.glsl"
 #include "segment.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -11,7 +23,7 @@ layout(push_constant, scalar) uniform Push { uint64_t params; } pc;
 
 void main() {
   FrameParams fp = SmParams(pc.params).p;
-  uvec2 px = tiledPixel();
+  uvec2 px = smPixel();
   bool inImage = px.x < fp.width && px.y < fp.height;
   SegmentStats st = noStats();
   uint nseg = 0u;

@@ -6,9 +6,6 @@
 #ifndef SM_RAY_LOOP_GLSL
 #define SM_RAY_LOOP_GLSL
 
-#include "shell_query.glsl"
-#include "segment.glsl"
-
 // Where the ray enters (x, 0 when it starts inside) and leaves (y) this rank's bounding box;
 // (0, 3e38) without bounds. Slabs parallel to the ray bound nothing.
 vec2 boxSpan(RayFrame fr, FrameParams fp) {

@@ -3,10 +3,6 @@
 #ifndef SM_SEGMENT_GLSL
 #define SM_SEGMENT_GLSL
 
-#include "shell_entry.glsl"
-#include "fragment_list.glsl"
-#include "counters.glsl"
-
 struct SegmentStats {
   uint lost, grazing, walks, stepLimit, steps, samples, inside, boxExits, queries;
 };
@@ -51,19 +47,8 @@ bool integrateSegment(RayFrame fr, FrameParams fp, Segment seg, inout float prev
   return true;
 }
 
-// Adds this subgroup's statistics to the frame's counters. Every atomic sits behind a branch on a
-// subgroup total: the total is uniform, so lavapipe branches around the block instead of masking
-// it, and the atomic's per-lane loop (eight iterations with a stack round trip each, inactive lanes
-// included) runs only when there is something to add. Thirteen such loops cost about 25 ms of a
-// 512² frame whose rays all miss; rare counters are now skipped and frequent ones run once.
-#define SM_FLUSH(counter, value)                            \
-  {                                                        \
-    uint total_ = subgroupAdd(value);                      \
-    if (total_ != 0u) {                                    \
-      if (subgroupElect()) atomicAdd(counter, total_);     \
-    }                                                      \
-  }
-
+// Adds this invocation's statistics to the frame's counters (subgroup_ops.glsl: one atomic a
+// subgroup where the stage has subgroups).
 void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, uint overflow) {
   SmStats s = SmStats(fp.stats);
   SM_FLUSH(s.s.lostRays, st.lost);
@@ -76,25 +61,22 @@ void flushStats(FrameParams fp, SegmentStats st, uint segments, uint fragments, 
   SM_FLUSH(s.s.shellQueries, st.queries);
   SM_FLUSH(s.s.segments, segments);
   SM_FLUSH(s.s.fragments, fragments);
-  uint steps = subgroupAdd(st.steps), samples = subgroupAdd(st.samples);
-  if (steps != 0u) {
-    if (subgroupElect()) SM_ADD_WITH_CARRY(s.s.elementSteps, s.s.elementStepsHigh, steps);
-  }
-  if (samples != 0u) {
-    if (subgroupElect()) SM_ADD_WITH_CARRY(s.s.samples, s.s.samplesHigh, samples);
-  }
+  SM_FLUSH_WIDE(s.s.elementSteps, s.s.elementStepsHigh, st.steps);
+  SM_FLUSH_WIDE(s.s.samples, s.s.samplesHigh, st.samples);
 }
 
 layout(buffer_reference, scalar) readonly buffer SmRays { RayDesc v[]; };
 
-// The pixel of this invocation in 8 x 8 workgroups: invocations in Morton order, so that each run
-// of 8 (one SIMD batch on lavapipe's 256-bit vectors, a quarter of a warp elsewhere) is a 4 x 2
-// block whose rays stay closer together than a row's.
-uvec2 tiledPixel() {
-  uint i = gl_LocalInvocationIndex;
+// The pixel of this invocation: tiles of 8 x 8 (stage_*.glsl), invocations in Morton order within
+// a tile, so that each run of 8 (one SIMD batch on lavapipe's 256-bit vectors, a quarter of a warp
+// elsewhere) is a 4 x 2 block whose rays stay closer together than a row's.
+uvec2 smPixel() {
+  uvec2 tile;
+  uint i;
+  smTileAndLane(tile, i);
   uint x = (i & 1u) | ((i >> 1u) & 2u) | ((i >> 2u) & 4u);
   uint y = ((i >> 1u) & 1u) | ((i >> 2u) & 2u) | ((i >> 3u) & 4u);
-  return gl_WorkGroupID.xy * 8u + uvec2(x, y);
+  return tile * 8u + uvec2(x, y);
 }
 
 // The part of the ray that the frame's clip planes keep (scene::clipSpan, in float): [clipLo,

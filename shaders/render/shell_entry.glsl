@@ -3,19 +3,6 @@
 #ifndef SM_SHELL_ENTRY_GLSL
 #define SM_SHELL_ENTRY_GLSL
 
-#include "march.glsl"
-
-const uint kNoTriangle = 0xFFFFFFFFu;
-
-// True when the shell BLAS holds boxes and the exact predicates decide every shell crossing
-// (shell_query.glsl); false when the device's triangle test does.
-layout(constant_id = 11) const bool kExactShell = true;
-
-uvec3 shellTriangle(SceneRefs sc, uint tri) {
-  SmUints idx = SmUints(sc.shellIndices);
-  return uvec3(idx.v[3u * tri], idx.v[3u * tri + 1u], idx.v[3u * tri + 2u]);
-}
-
 // From shell triangle `tri` (the hardware's answer), the triangle that the exact predicates say the
 // ray crosses with the wanted side (-1 entry, +1 exit); kNoTriangle when the ray only grazes the
 // shell there. `walked` counts corrections.

@@ -17,65 +17,10 @@
 #ifndef SM_SHELL_QUERY_GLSL
 #define SM_SHELL_QUERY_GLSL
 
-#extension GL_EXT_ray_query : require
-
-#include "shell_entry.glsl"
-
-layout(set = 0, binding = 0) uniform accelerationStructureEXT tlas;
-
 // Two distances along a ray to the same place, computed on different triangles or by different
 // formulas (the exact walk and the float box test), differ by rounding; within this (relative)
 // they count as the same place. Far thinner than any sample spacing.
 const float kSamePlace = 4.0e-6;
-
-// Exact mode: the first crossing with the wanted side (-1 entry, +1 exit) after (tPrev, triPrev) in
-// (t, triangle) order, so that crossings at equal t (coincident shells) are each found once.
-bool exactCrossing(RayFrame fr, SceneRefs sc, float tPrev, uint triPrev, float tMax, int side, out uint tri,
-                   out float tBest) {
-  rayQueryEXT q;
-  rayQueryInitializeEXT(q, tlas, gl_RayFlagsNoneEXT, 0xFF, fr.org, max(tPrev, 0.0), fr.dir, tMax);
-  bool found = false;
-  tri = kNoTriangle;
-  tBest = tMax;
-  while (rayQueryProceedEXT(q)) {
-    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT) continue;
-    uint p = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false));
-    uvec3 ids = shellTriangle(sc, p);
-    vec3 p0 = projectVertex(fr, vertexPosition(sc, ids.x));
-    vec3 p1 = projectVertex(fr, vertexPosition(sc, ids.y));
-    vec3 p2 = projectVertex(fr, vertexPosition(sc, ids.z));
-    if (crossingSide(p0.xy, p1.xy, p2.xy) != side) continue;
-    float t;
-    vec3 w;
-    vec2 slope;
-    triangleCrossing(ids.x, ids.y, ids.z, p0, p1, p2, t, w, slope);
-    bool after = t > tPrev || (t == tPrev && triPrev != kNoTriangle && p > triPrev);
-    if (!after || t > tBest || (found && t == tBest && p > tri)) continue;
-    found = true;
-    tri = p;
-    tBest = t;
-    // The device may only prune what lies beyond a committed hit; keep its t inside its range.
-    rayQueryGenerateIntersectionEXT(q, clamp(t, max(tPrev, 0.0), tMax));
-  }
-  return found;
-}
-
-// Device mode: the nearest triangle hit beyond tPrev facing the wanted way (-1: entries are the
-// front faces, so back faces are culled; +1: exits, front faces culled).
-bool deviceCrossing(RayFrame fr, float tPrev, float tMax, int side, out uint tri, out float t) {
-  uint flags = gl_RayFlagsOpaqueEXT |
-               (side < 0 ? gl_RayFlagsCullBackFacingTrianglesEXT : gl_RayFlagsCullFrontFacingTrianglesEXT);
-  rayQueryEXT q;
-  float tMin = max(tPrev, 0.0);
-  tMin += max(abs(tMin), 1e-20) * 2e-6;  // a few ulps past the last hit, or it is found again
-  rayQueryInitializeEXT(q, tlas, flags, 0xFF, fr.org, tMin, fr.dir, tMax);
-  while (rayQueryProceedEXT(q)) {
-  }
-  if (rayQueryGetIntersectionTypeEXT(q, true) != gl_RayQueryCommittedIntersectionTriangleEXT) return false;
-  tri = uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, true));
-  t = rayQueryGetIntersectionTEXT(q, true);
-  return true;
-}
 
 // The first crossing after tPrev. With a probe (tPrev < probe < 3e38), the search first stops at
 // `probe`: the device then visits only the nodes near where the crossing is expected, instead of

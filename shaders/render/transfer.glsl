@@ -3,10 +3,6 @@
 #ifndef SM_TRANSFER_GLSL
 #define SM_TRANSFER_GLSL
 
-#extension GL_KHR_shader_subgroup_basic : require
-#extension GL_KHR_shader_subgroup_vote : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
-
 // floor(x) as an integer, for 0 <= x < 2^23 (table coordinates): added to 2^23, a float's mantissa
 // holds it. Not uint(x): lavapipe converts a float to an integer one lane at a time (LLVM's
 // saturating conversion, scalarised), eight conversions and compares per sample; this is a
@@ -55,7 +51,7 @@ vec4 transferLookupCached(FrameParams fp, float s, inout TfCache cache) {
   // decision would put the reads under a mask that changes from sample to sample, and on lavapipe
   // (no fast gathers on AMD CPUs) each masked read is eight branches that such a mask makes
   // unpredictable. A lane that did not need new entries reads the same ones again.
-  if (subgroupAny(i != cache.i)) {
+  if (smAny(i != cache.i)) {
     uint w = 2u * min(i, fp.tfEntries - 2u);
     SmUint64s tf = SmUint64s(fp.transferFunction);
     cache.hi = vec4(unpackFloats(tf.v[w + 2u]), unpackFloats(tf.v[w + 3u]));
@@ -315,7 +311,7 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
   // predictable on lavapipe (transferLookupCached says why), and the bound is one reduction per
   // element instead of a vote per sample. The samples kept, their order and values are the same.
   uint n = kEnd - k;
-  uint trips = subgroupMax(n);
+  uint trips = smMax(n);
   bool done = false;  // early termination, decided after a sample as the walk decides it
   for (uint j = 0u; j < trips; ++j) {
     bool more = j < n && !done;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "common/error.h"
@@ -163,6 +164,14 @@ comp::ListMode parseListMode(const std::string& value) {
   if (value == "drop") return comp::ListMode::FixedDrop;
   if (value == "merge") return comp::ListMode::FixedMerge;
   throw Error("--lists: '", value, "' (use two-pass, drop or merge)");
+}
+
+vk::Tracer parseTracer(const std::string& value) {
+  try {
+    return vk::parseTracer("--tracer", value);
+  } catch (const std::invalid_argument& e) {
+    throw Error(e.what());
+  }
 }
 
 comp::Encoding parseEncoding(const std::string& value) {

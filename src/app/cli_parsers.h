@@ -11,6 +11,7 @@
 #include "app/cli_checks.h"
 #include "compositor/deep_compositor.h"
 #include "render/render_settings.h"
+#include "vk/context.h"
 
 namespace sm::app {
 
@@ -22,6 +23,7 @@ std::pair<double, double> parseRange(const std::string& option,
 int64_t parseCount(const std::string& option, const std::string& value, const char* what,
                    int64_t hi, const char* hiText);
 double parsePositive(const std::string& option, const std::string& value);  // > 0, finite
+vk::Tracer parseTracer(const std::string& value);                      // auto | query | pipeline
 comp::ListMode parseListMode(const std::string& value);                // two-pass | drop | merge
 comp::Encoding parseEncoding(const std::string& value);                // float | rgba8
 comp::PixelOwnership parsePixelOwnership(const std::string& value);    // interleaved | ranges

@@ -11,5 +11,6 @@ void registerGenerate(CLI::App& app);  // cmd_generate.cpp
 void registerRender(CLI::App& app);    // cmd_render.cpp
 void registerBench(CLI::App& app);     // cmd_bench.cpp (subcommands: bench/registry.cpp)
 void registerView(CLI::App& app);      // cmd_view.cpp
+void registerDevices(CLI::App& app);   // cmd_devices.cpp
 
 }  // namespace sm::app

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   sm::app::registerRender(app);
   sm::app::registerBench(app);
   sm::app::registerView(app);
+  sm::app::registerDevices(app);
   try {
     app.name(argv[0]);
     app.parse(sm::app::parserArguments(argc, argv));

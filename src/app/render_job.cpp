@@ -296,7 +296,7 @@ void runRender(const RenderJob& job, Collectives& coll) {
 
     StatsReport report(job, coll);
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
-                    ctx.deviceName(), s);
+                    ctx.deviceName(), vk::tracerName(renderer.tracer()), s);
     report.setHostMemory(peakAfterLoad);
     renderFrames(
         {job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});

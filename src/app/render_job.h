@@ -13,6 +13,7 @@
 #include "compositor/deep_compositor.h"
 #include "render/render_settings.h"
 #include "scene/camera.h"
+#include "vk/context.h"
 
 namespace sm::app {
 
@@ -34,6 +35,7 @@ struct RenderJob {
   comp::CompositorOptions lists;
   bool compact = true;
   std::string device;
+  vk::Tracer tracer = vk::Tracer::Auto;
   std::string cacheDir;                // "" = no preparation cache
   std::string out = "shellmarch.png";  // .png or .pfm (float, for comparisons finer than 8 bits)
   comp::CompositeMethod composite = comp::CompositeMethod::Deep;

@@ -152,6 +152,7 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
 vk::ContextOptions contextOptions(const RenderJob& job) {
   vk::ContextOptions vo;
   vo.device = job.device;
+  vo.tracer = job.tracer;
   return vo;
 }
 

@@ -44,10 +44,12 @@ nlohmann::json StatsReport::spread(double v) const {
 
 void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCache,
                            const prep::PreparedRank& rank, const render::GpuScene& gpu,
-                           const std::string& device, const render::RenderSettings& s) {
+                           const std::string& device, const std::string& tracer,
+                           const render::RenderSettings& s) {
   auto mem = prep::memoryReport(rank);
   mem.accelerationStructures = gpu.accelerationStructureBytes();
   json_["device"] = device;
+  json_["tracer"] = tracer;
   json_["dt"] = s.dt;
   json_["clip_planes"] = nlohmann::json::array();
   for (const scene::ClipPlane& p : s.clipPlanes)
@@ -135,8 +137,9 @@ void StatsReport::addFrame(uint64_t step, const scene::Camera& camera, const ren
 
 void StatsReport::printSetup() const {
   const auto& j = json_;
-  std::printf("shellmarch render: %s on %s, %d rank(s), %dx%d, dt %.4g\n", job_.mesh.c_str(),
-              j["device"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height,
+  std::printf("shellmarch render: %s on %s (%s tracer), %d rank(s), %dx%d, dt %.4g\n",
+              job_.mesh.c_str(), j["device"].get<std::string>().c_str(),
+              j["tracer"].get<std::string>().c_str(), coll_.size(), job_.width, job_.height,
               j["dt"].get<double>());
   std::printf("  load %.2f s, prepare %.2f s%s; %llu elements, %llu shell triangles\n",
               j["load_seconds_max"].get<double>(), j["prepare_seconds_max"].get<double>(),

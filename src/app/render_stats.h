@@ -30,7 +30,8 @@ class StatsReport {
   StatsReport(const RenderJob& job, Collectives& coll);
   void setSetup(double loadSeconds, double prepSeconds, bool fromCache,
                 const prep::PreparedRank& rank, const render::GpuScene& gpu,
-                const std::string& device, const render::RenderSettings& s);
+                const std::string& device, const std::string& tracer,
+                const render::RenderSettings& s);
   // Collective. Host memory per rank: the peak resident size once the mesh was loaded (before
   // preparation and the device) and now (after setup: the driver's own memory included).
   void setHostMemory(uint64_t peakAfterLoad);

@@ -80,6 +80,9 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_flag("--plain", raw.plain, "Keep elements uncompacted (no XOR compaction)");
   cmd->add_option("--device", job.device, "Vulkan device index or name substring")
       ->check(nonEmptyName());
+  cmd->add_option("--tracer", t["--tracer"],
+                  "How shell crossings are traced: auto (default: ray queries where the device "
+                  "offers them, else a ray tracing pipeline), query or pipeline");
   cmd->add_option("--cache-dir", job.cacheDir, "Folder for the preparation cache (off by default)");
 }
 
@@ -98,6 +101,7 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   if (!get("--background").empty())
     job.background = glm::vec3(parseVec3("--background", get("--background")));
   if (!get("--lists").empty()) job.lists.mode = parseListMode(get("--lists"));
+  if (!get("--tracer").empty()) job.tracer = parseTracer(get("--tracer"));
   if (!get("--encoding").empty()) job.lists.encoding = parseEncoding(get("--encoding"));
   if (!get("--pixel-ownership").empty())
     job.lists.ownership = parsePixelOwnership(get("--pixel-ownership"));

@@ -35,6 +35,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
       sm::vk::ContextOptions o;
       o.device = options.device;
       o.validation = options.validation;
+      o.tracer = sm::vk::parseTracer("tracer", options.tracer);
       ctx = std::make_unique<sm::vk::Context>(o);
     });
   }
@@ -267,6 +268,7 @@ Stats Renderer::stats() const {
   const Impl& d = *impl_;
   Stats s;
   s.deviceName = d.ctx->deviceName();
+  s.tracer = sm::vk::tracerName(d.ctx->tracer());
   s.geometryBuilds = d.retiredBuilds;
   s.scalarUploads = d.retiredUploads;
   if (d.scene) {

@@ -5,24 +5,23 @@
 namespace sm::render {
 namespace {
 
-struct Push {
-  uint64_t params;
-  uint32_t store = 0;  // count/store passes: which of the two (render_cached.comp)
-};
+// tracer_passes.glsl's kPass.
+constexpr uint32_t kPassConstant = 30;
+enum : uint32_t { kPassTraverse = 0, kPassCached = 1, kPassFused = 2 };
 
-void dispatchPixels(const vk::ComputePipeline& p, VkCommandBuffer cmd, VkDeviceAddress params,
-                    int w, int h, uint32_t store = 0) {
-  p.dispatch(cmd, vk::groupsFor(uint64_t(w), 8), vk::groupsFor(uint64_t(h), 8), 1,
-             Push{params, store});
+std::vector<vk::SpecConstant> withPass(std::vector<vk::SpecConstant> spec, uint32_t pass) {
+  spec.push_back({kPassConstant, pass});
+  return spec;
 }
 
 vk::ComputePipeline makePipeline(const vk::Context& ctx, const char* name,
                                  std::span<const uint32_t> spirv,
-                                 std::vector<vk::SpecConstant> spec, bool tlas,
-                                 const GpuScene& scene) {
-  vk::ComputePipeline p(ctx, {name, spirv, std::move(spec), sizeof(Push), tlas});
-  if (tlas) p.setAccelerationStructure(scene.tlas());
-  return p;
+                                 std::vector<vk::SpecConstant> spec) {
+  return vk::ComputePipeline(ctx, {name, spirv, std::move(spec), sizeof(TracerPush), false});
+}
+
+vk::Tracer resolved(const vk::Context& ctx, vk::Tracer t) {
+  return t == vk::Tracer::Auto ? ctx.tracer() : t;
 }
 
 }  // namespace
@@ -42,62 +41,67 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
 }
 
 CountStorePass::CountStorePass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
-                               PassOptions options, CountStoreKind kind) {
-  const bool cached = kind == CountStoreKind::Cached;
-  const auto spirv = cached ? spv::render_cached() : spv::traverse();
-  pipeline_ =
-      makePipeline(ctx, cached ? "trace and march (count, store)" : "traverse (count, store)",
-                   spirv, sceneSpecialization(ctx, scene, c, options), true, scene);
-}
+                               vk::Tracer tracer, PassOptions options, CountStoreKind kind)
+    : pipeline_(ctx, scene, tracer,
+                kind == CountStoreKind::Cached ? "trace and march (count, store)"
+                                               : "traverse (count, store)",
+                withPass(sceneSpecialization(ctx, scene, c, options),
+                         kind == CountStoreKind::Cached ? kPassCached : kPassTraverse)) {}
 
 void CountStorePass::recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(pipeline_, cmd, params, w, h, 0);
+  pipeline_.record(cmd, params, w, h, 0);
 }
 
 void CountStorePass::recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(pipeline_, cmd, params, w, h, 1);
+  pipeline_.record(cmd, params, w, h, 1);
 }
 
 MarchPass::MarchPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
                      PassOptions options)
-    : pipeline_(makePipeline(ctx, "march", spv::march(),
-                             sceneSpecialization(ctx, scene, c, options), false, scene)) {}
+    : pipeline_(
+          makePipeline(ctx, "march", spv::march(), sceneSpecialization(ctx, scene, c, options))) {}
 
 void MarchPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(pipeline_, cmd, params, w, h);
+  pipeline_.dispatch(cmd, vk::groupsFor(uint64_t(w), 8), vk::groupsFor(uint64_t(h), 8), 1,
+                     TracerPush{params});
 }
 
 StoreCachedPass::StoreCachedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c)
     : pipeline_(makePipeline(ctx, "store cached", spv::store_cached(),
-                             sceneSpecialization(ctx, scene, c, PassOptions{}), false, scene)) {}
+                             sceneSpecialization(ctx, scene, c, PassOptions{}))) {}
 
 void StoreCachedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  pipeline_.dispatchItems(cmd, uint64_t(w) * uint64_t(h), 64, Push{params});
+  pipeline_.dispatchItems(cmd, uint64_t(w) * uint64_t(h), 64, TracerPush{params});
 }
 
 FusedPass::FusedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants c,
-                     PassOptions options)
-    : pipeline_(makePipeline(ctx, "render (fused)", spv::render_fused(),
-                             sceneSpecialization(ctx, scene, c, options), true, scene)) {}
+                     vk::Tracer tracer, PassOptions options)
+    : pipeline_(ctx, scene, tracer, "render (fused)",
+                withPass(sceneSpecialization(ctx, scene, c, options), kPassFused)) {}
 
 void FusedPass::record(VkCommandBuffer cmd, VkDeviceAddress params, int w, int h) const {
-  dispatchPixels(pipeline_, cmd, params, w, h);
+  pipeline_.record(cmd, params, w, h, 0);
 }
 
 PassCache::PassCache(const vk::Context& ctx, const GpuScene& scene,
-                     const comp::DeepCompositor& compositor)
-    : ctx_(ctx), scene_(scene), lists_(ListConstants::of(compositor)) {}
+                     const comp::DeepCompositor& compositor, vk::Tracer tracer)
+    : ctx_(ctx),
+      scene_(scene),
+      lists_(ListConstants::of(compositor)),
+      tracer_(resolved(ctx, tracer)) {}
 
-bool PassCache::serves(const GpuScene& scene, const comp::DeepCompositor& compositor) const {
-  return &scene == &scene_ && ListConstants::of(compositor) == lists_;
+bool PassCache::serves(const GpuScene& scene, const comp::DeepCompositor& compositor,
+                       vk::Tracer tracer) const {
+  return &scene == &scene_ && ListConstants::of(compositor) == lists_ &&
+         resolved(ctx_, tracer) == tracer_;
 }
 
 CountStorePass& PassCache::traversal() {
-  return ensure(traversal_, PassOptions{}, CountStoreKind::Traversal);
+  return ensure(traversal_, tracer_, PassOptions{}, CountStoreKind::Traversal);
 }
 
 CountStorePass& PassCache::cached(PassOptions options) {
-  return ensure(cached_[options.index()], options, CountStoreKind::Cached);
+  return ensure(cached_[options.index()], tracer_, options, CountStoreKind::Cached);
 }
 
 StoreCachedPass& PassCache::storeCached() {
@@ -109,7 +113,7 @@ MarchPass& PassCache::march(PassOptions options) {
 }
 
 FusedPass& PassCache::fused(PassOptions options) {
-  return ensure(fused_[options.index()], options);
+  return ensure(fused_[options.index()], tracer_, options);
 }
 
 }  // namespace sm::render

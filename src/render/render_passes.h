@@ -9,6 +9,7 @@
 
 #include "compositor/deep_compositor.h"
 #include "render/gpu_scene.h"
+#include "render/tracer_pipeline.h"
 #include "vk/pipeline.h"
 
 namespace sm::render {
@@ -23,9 +24,6 @@ struct ListConstants {
   bool operator==(const ListConstants&) const = default;
 };
 
-// Specialization shared by every pass: scene (compaction, element types present), device
-// (float64 available) and the compositor's list mode and encoding.
-// What a frame's settings add to the specialisation.
 // What a frame's pipelines are specialised for besides the scene (DESIGN.md, "pay only for what
 // the scene uses"): each combination is its own pipeline, built on first use.
 struct PassOptions {
@@ -46,22 +44,22 @@ std::vector<vk::SpecConstant> sceneSpecialization(const vk::Context& ctx, const 
 
 // A two-pass stage: one pipeline that counts or stores (a push constant picks the pass; one
 // pipeline, not two specialisations, because compiling the tracer is most of a renderer's first
-// frame on lavapipe).
-//   Traversal (traverse.comp): the stage-split tracer's traversal, counting then storing segments.
-//   Cached (render_cached.comp): the count pass traces and marches, caching each pixel's first
-//     segments and fragments; the store pass traces again the pixels with more segments than
-//     cache slots (StoreCachedPass copies the others).
+// frame on lavapipe). tracer_passes.glsl says what each pass does.
+//   Traversal: the stage-split tracer's traversal, counting then storing segments.
+//   Cached: the count pass traces and marches, caching each pixel's first segments and
+//     fragments; the store pass traces again the pixels with more segments than cache slots
+//     (StoreCachedPass copies the others).
 enum class CountStoreKind { Traversal, Cached };
 
 class CountStorePass {
  public:
   CountStorePass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists,
-                 PassOptions options, CountStoreKind kind);
+                 vk::Tracer tracer, PassOptions options, CountStoreKind kind);
   void recordCount(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
   void recordStore(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
-  vk::ComputePipeline pipeline_;
+  TracerPipeline pipeline_;
 };
 
 class MarchPass {
@@ -88,12 +86,12 @@ class StoreCachedPass {
 
 class FusedPass {
  public:
-  FusedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists,
+  FusedPass(const vk::Context& ctx, const GpuScene& scene, ListConstants lists, vk::Tracer tracer,
             PassOptions options);
   void record(VkCommandBuffer cmd, VkDeviceAddress params, int width, int height) const;
 
  private:
-  vk::ComputePipeline pipeline_;
+  TracerPipeline pipeline_;
 };
 
 // A scene's pass objects, each built the first time a frame asks for it. Renderers of the same
@@ -101,11 +99,17 @@ class FusedPass {
 // another image size (the viewer's after a resize) compiles no pipeline: pipelines depend on the
 // scene, the options and the compositor's list mode and encoding, not on the image size, and
 // compiling the tracer is most of a renderer's first frame on lavapipe (seconds on the demo).
+//
+// The tracer passes trace with `tracer` (vk::Tracer::Auto: the context's choice).
 class PassCache {
  public:
-  PassCache(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor);
-  // Whether passes built for this cache serve `compositor` (the same list mode and encoding).
-  bool serves(const GpuScene& scene, const comp::DeepCompositor& compositor) const;
+  PassCache(const vk::Context& ctx, const GpuScene& scene, const comp::DeepCompositor& compositor,
+            vk::Tracer tracer = vk::Tracer::Auto);
+  // Whether passes built for this cache serve `compositor` (the same list mode and encoding) with
+  // `tracer` (Auto: the context's).
+  bool serves(const GpuScene& scene, const comp::DeepCompositor& compositor,
+              vk::Tracer tracer = vk::Tracer::Auto) const;
+  vk::Tracer tracer() const { return tracer_; }
 
   CountStorePass& traversal();
   CountStorePass& cached(PassOptions options);
@@ -128,6 +132,7 @@ class PassCache {
   const vk::Context& ctx_;
   const GpuScene& scene_;
   ListConstants lists_;
+  vk::Tracer tracer_;
   uint64_t built_ = 0;
   std::unique_ptr<CountStorePass> traversal_;
   std::unique_ptr<CountStorePass> cached_[PassOptions::kCombinations];

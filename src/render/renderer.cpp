@@ -43,13 +43,13 @@ std::vector<glm::vec4> deviceTable(const scene::TransferFunction& tf) {
 }  // namespace
 
 Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor,
-                   std::shared_ptr<PassCache> passes)
+                   std::shared_ptr<PassCache> passes, vk::Tracer tracer)
     : ctx_(ctx),
       scene_(scene),
       compositor_(compositor),
-      passes_(passes && passes->serves(scene, compositor)
+      passes_(passes && passes->serves(scene, compositor, tracer)
                   ? std::move(passes)
-                  : std::make_shared<PassCache>(ctx, scene, compositor)),
+                  : std::make_shared<PassCache>(ctx, scene, compositor, tracer)),
       timestamps_(ctx, 8) {
   params_ = vk::Buffer(ctx, sizeof(gpu::FrameParams), vk::kStorageUsage, vk::MemoryUse::Upload,
                        "frame params");

@@ -47,9 +47,12 @@ struct FrameResult {
 class Renderer {
  public:
   // `passes`: the pipelines of an earlier renderer of this scene, shared when they serve this
-  // compositor's lists (PassCache); otherwise, and by default, the renderer builds its own.
+  // compositor's lists and tracer (PassCache); otherwise, and by default, the renderer builds its
+  // own. `tracer`: how shell crossings are traced (Auto: the context's choice, ctx.tracer()).
   Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor,
-           std::shared_ptr<PassCache> passes = nullptr);
+           std::shared_ptr<PassCache> passes = nullptr, vk::Tracer tracer = vk::Tracer::Auto);
+  // The tracer this renderer's frames use (Query or Pipeline).
+  vk::Tracer tracer() const { return passes_->tracer(); }
   // `reuse`: an earlier frame's pixels, whose storage this frame's image takes over. A frame loop
   // hands each frame's pixels back (`frame = r.render(s, std::move(frame.pixels))`): a fresh
   // image per frame costs its page faults every frame once it is over glibc's 32 MiB mapping

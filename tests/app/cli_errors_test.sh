@@ -214,6 +214,20 @@ expect "SHELLMARCH_FAULT: action=close or next-field goes with at=range-pass" \
   env SHELLMARCH_FAULT=at=frame,frame=0,action=next-field "$sm" render ok.pvtu --out a.png
 expect "SHELLMARCH_FAULT: cannot use 'at=bogus'" \
   env SHELLMARCH_FAULT=at=bogus,action=kill "$sm" render ok.pvtu --out a.png
+# Tracers: a bad name, a device without the tracer asked for (ray queries hidden from lavapipe),
+# one with neither, and a ray tracing pipeline the driver fails to create.
+expect "--tracer: 'rtx' is not auto, query or pipeline" "$sm" render ok.pvtu --tracer rtx --out a.png
+expect "--tracer: 'rtx' is not auto, query or pipeline" "$sm" bench render --mesh ok.pvtu --tracer rtx \
+  --no-vtk --sizes 16 --work-dir bw
+expect "for the query tracer: [0] llvmpipe" \
+  env SHELLMARCH_HIDE=ray_query "$sm" render ok.pvtu --tracer query --out a.png
+expect "lacks ray queries (VK_KHR_ray_query (hidden)) and a ray tracing pipeline (VK_KHR_ray_tracing_pipeline (hidden))" \
+  env SHELLMARCH_HIDE=ray_query,ray_tracing_pipeline "$sm" render ok.pvtu --out a.png
+expect "SHELLMARCH_HIDE: 'rt_cores' is not ray_query" env SHELLMARCH_HIDE=rt_cores "$sm" render ok.pvtu --out a.png
+expect "failed to create the ray tracing pipeline 'trace and march (count, store) (ray tracing pipeline)' (VK_ERROR_INITIALIZATION_FAILED)" \
+  env SHELLMARCH_FAIL_RAY_TRACING_PIPELINE=1 "$sm" render ok.pvtu --tracer pipeline --out a.png
+expect "--tracers: llvmpipe" env SHELLMARCH_HIDE=ray_tracing_pipeline "$sm" bench tracers --analytic cube-tets6 \
+  --cube-n 2 --tracers pipeline --sizes 16
 printf 'not a mesh' > garbage.vtu
 expect "garbage.vtu" "$sm" render garbage.vtu --out a.png
 if ls a.png a.jpg 2>/dev/null | grep -q .; then echo "FAIL: an output image was written"; fails=$((fails + 1)); fi

@@ -23,6 +23,14 @@ for n in 1 3; do
     --out clip$n.pfm >/dev/null
 done
 "$diff" clip1.pfm clip3.pfm --max-abs 1e-5
+# The ray tracing pipeline's image is the ray queries' bit for bit, on 1 and 3 ranks.
+for n in 1 3; do
+  mpi $n "$sm" render cube.pvtu "${tf[@]}" --clip $CUT1 --clip 'x<0.8' --tracer pipeline \
+    --stats-json clip$n-pipeline.json --out clip$n-pipeline.pfm >/dev/null
+  cmp clip$n.pfm clip$n-pipeline.pfm || fail "$n rank(s): the pipeline tracer's clipped image differs"
+done
+json clip1.json "j['tracer'] == 'query'"
+json clip3-pipeline.json "j['tracer'] == 'pipeline'"
 json clip1.json "j['frames'][0]['lost_rays'] == 0"
 json clip3.json "j['clip_planes'] == [{'point': [0.5, 0.5, 0.5], 'normal': [1, 0.8, -0.6]}, {'point': [0.8, 0, 0], 'normal': [-1, 0, 0]}]"
 json clip3.json "j['frames'][0]['lost_rays'] == 0"

@@ -41,6 +41,6 @@ LD_LIBRARY_PATH=$work/module/lib LD_DEBUG=libs "$run" shellmarch --help > /dev/n
 check "an Open MPI in LD_LIBRARY_PATH (module load) is used" \
   grep -q "init: $work/module/lib/libmpi.so.40" ld-mpi-module.log
 check "no C++ MPI bindings are needed" bash -c "! grep -q libmpi_cxx ld-mpi.log"
-check "the GPU cases are listed for portable-gpu-check.sh" grep -q "^test_render .*Slab.TetGrid" x/shellmarch/gpu-tests.txt
+check "the GPU cases are listed for gpu-check.sh" grep -q "^test_render .*Slab.TetGrid" x/shellmarch/gpu-tests.txt
 [ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
 rm -rf b.tar x module  # 300 MB; kept when a check failed

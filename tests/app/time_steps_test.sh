@@ -38,6 +38,9 @@ for n in 1 3; do
   json $s "j['sequence']['fps_mean'] > 0 and j['sequence']['prefetch'] and j['sequence']['runs'] == 1"
   json $s "'scalar_wait_ms_mean' in j['sequence'] and 'prefetch_hidden' in j['sequence']"
   json $s "j['sequence']['geometry_builds'] == {'min': 1, 'max': 1}"
+  # Every step's frame from the ray tracing pipeline tracer is the ray queries' bit for bit.
+  mpi $n "$sm" render steps.pvtu "${view[@]}" --time all --tracer pipeline --out seq$n-pipeline.pfm >/dev/null
+  for k in 0 1 2 3; do cmp seq${n}_000$k.pfm seq$n-pipeline_000$k.pfm; done
   json $s "j['sequence']['scalar_uploads'] == {'min': 4, 'max': 4}"
   # Host memory per rank: known on Linux, the peak after setup at least the peak after loading.
   json $s "0 < j['host_peak_bytes_after_load_per_rank']['min'] <= j['host_peak_bytes_after_setup_per_rank']['min']"

@@ -21,7 +21,7 @@ using Case = void (*)(Communicator*, const vk::Context&);
 
 vk::ContextOptions computeOnly(bool forceStaging = false) {
   vk::ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   o.forceStaging = forceStaging;
   return o;
 }

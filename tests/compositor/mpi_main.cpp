@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     test::gWorld = &world;
     runOrAbort(world, [&] {
       sm::vk::ContextOptions o;
-      o.requireRayQuery = false;
+      o.rayTracing = false;
       sm::vk::Context ctx(o);
       test::gContext = &ctx;
       if (world.rank() != 0) {

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "renderer_suite.h"
 #include "shellmarch/insitu.h"
@@ -229,6 +231,36 @@ TEST_F(InsituErrors, Settings) {
   // Longer than the data: most rays would take no sample and the image would be empty.
   expectSettingError([](auto& s) { s.sampleDistance = 1e6; },
                      "render: sampleDistance: 1e+06 is longer than the data's diagonal");
+}
+
+// Options::tracer: a name it does not know is refused; each tracer the device offers renders the
+// same image, and stats() says which rendered.
+TEST(InsituTracer, EachTracerRendersTheSameImageAndABadNameIsRefused) {
+  api::Options bad;
+  bad.tracer = "rtx";
+  expectError([&] { api::Renderer r(bad); }, "tracer: 'rtx' is not auto, query or pipeline");
+  SimMesh sim = simMesh(sm::test::hexGrid(2));
+  std::vector<float> field(sim.vertices());
+  for (size_t i = 0; i < field.size(); ++i) field[i] = float(i % 5);
+  std::vector<std::vector<float>> images;
+  for (const char* tracer : {"query", "pipeline"}) {
+    api::Options o;
+    o.tracer = tracer;
+    std::unique_ptr<api::Renderer> r;
+    try {
+      r = std::make_unique<api::Renderer>(o);
+    } catch (const api::Error& e) {
+      std::printf("%s tracer not offered here: %s\n", tracer, e.what());
+      continue;
+    }
+    EXPECT_EQ(r->stats().tracer, tracer);
+    r->setMesh(sim.view());
+    r->setField("t", field);
+    images.push_back(r->render(small()).rgba);
+    EXPECT_EQ(r->stats().validationErrors, 0u);
+  }
+  ASSERT_FALSE(images.empty());
+  if (images.size() == 2) EXPECT_EQ(images[0], images[1]);
 }
 
 // After any of these errors the renderer renders as if they had not happened.

@@ -9,20 +9,7 @@
 namespace sm::render {
 namespace {
 
-RenderSettings cubeView(int w, int h) {
-  RenderSettings s;
-  s.width = w;
-  s.height = h;
-  s.camera.eye = {2.1, -1.3, 1.7};
-  s.camera.at = {0.5, 0.5, 0.5};
-  s.camera.up = {0, 0, 1};
-  s.transferFunction = scene::makeTransferFunction("viridis");
-  s.transferFunction.lo = 0;
-  s.transferFunction.hi = 6;
-  s.transferFunction.unitDistance = 0.25;
-  s.dt = 0.0137;
-  return s;
-}
+using test::cubeView;
 
 TEST(PassCache, ARendererOfAnotherSizeTakesThePipelinesOver) {
   auto m = ref::test::cubeMesh(ref::test::Split::Wedges, 3);

@@ -107,6 +107,7 @@ RayComparison compareRays(const mesh::UnstructuredMesh& original,
   render::Renderer renderer(ctx, scene, compositor);
   render::FrameResult frame = renderer.renderRays(settings, rays);
   auto lists = renderer.lastFragments();
+  expectOtherTracerAgrees(ctx, scene, compositor, settings, renderer, frame, &rays);
 
   ref::ReferenceRenderer reference(input);
   ref::RenderSettings rs;

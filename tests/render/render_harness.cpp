@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 #include "prep/prepare.h"
 #include "prep/vertex_order.h"
@@ -43,11 +44,90 @@ prep::PreparedRank prepared(const mesh::UnstructuredMesh& input, bool compact) {
 
 RenderRig::RenderRig(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
                      int width, int height, const GpuRenderOptions& options)
-    : prepared(test::prepared(mesh, options.compact)),
+    : ctx(options.context),
+      prepared(test::prepared(mesh, options.compact)),
       scene(ctx, prepared, options.shell),
       compositor(ctx, nullptr, width, height, options.lists),
       renderer(ctx, scene, compositor) {
   scene.setScalars(prep::gatherScalars(prepared, values));
+}
+
+namespace {
+
+// Per-pixel lists equal bit for bit.
+template <typename T>
+bool sameBits(const std::vector<std::vector<T>>& a, const std::vector<std::vector<T>>& b) {
+  return a.size() == b.size() &&
+         std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+           return x.size() == y.size() &&
+                  std::memcmp(x.data(), y.data(), x.size() * sizeof(T)) == 0;
+         });
+}
+
+// The first render of the running test case: where the other tracer renders too. Once per test
+// case, not per render: on lavapipe each comparison costs a pipeline compile (about a second),
+// and a test's further renders mostly vary data the first already took through both tracers'
+// shared code (the ray harness, whose rays aim at hard cases, compares every render).
+bool firstRenderOfThisTest() {
+  static std::string last;
+  const testing::TestInfo* t = testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = t ? std::string(t->test_suite_name()) + "." + t->name() : "";
+  if (name == last) return false;
+  last = name;
+  return true;
+}
+
+}  // namespace
+
+render::RenderSettings cubeView(int width, int height) {
+  render::RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.camera.eye = {2.1, -1.3, 1.7};
+  s.camera.at = {0.5, 0.5, 0.5};
+  s.camera.up = {0, 0, 1};
+  s.transferFunction = scene::makeTransferFunction("viridis");
+  s.transferFunction.lo = 0;
+  s.transferFunction.hi = 6;
+  s.transferFunction.unitDistance = 0.25;
+  s.dt = 0.0137;
+  return s;
+}
+
+void expectOtherTracerAgrees(const vk::Context& ctx, const render::GpuScene& scene,
+                             comp::DeepCompositor& compositor,
+                             const render::RenderSettings& settings, const render::Renderer& first,
+                             const render::FrameResult& frame,
+                             const std::vector<render::WorldRay>* rays) {
+  const vk::Tracer used = first.tracer();
+  const vk::Tracer other = used == vk::Tracer::Query ? vk::Tracer::Pipeline : vk::Tracer::Query;
+  if (!(other == vk::Tracer::Query ? ctx.hasRayQuery() : ctx.hasRayTracingPipeline())) return;
+  const auto segments = first.lastSegments();
+  const auto fragments = first.lastFragments();
+  render::Renderer second(ctx, scene, compositor, nullptr, other);
+  ASSERT_EQ(second.tracer(), other);
+  render::FrameResult again = rays ? second.renderRays(settings, *rays) : second.render(settings);
+  const std::string what = std::string("the ") + vk::tracerName(other) + " tracer against the " +
+                           vk::tracerName(used) + " tracer: ";
+  ASSERT_EQ(again.pixels.size(), frame.pixels.size()) << what << "image size";
+  for (size_t i = 0; i < frame.pixels.size(); ++i)
+    if (std::memcmp(&again.pixels[i], &frame.pixels[i], sizeof(glm::vec4)) != 0) {
+      const glm::vec4 a = frame.pixels[i], b = again.pixels[i];
+      ADD_FAILURE() << what << "pixel " << i << " differs: (" << a.r << ", " << a.g << ", " << a.b
+                    << ", " << a.a << ") against (" << b.r << ", " << b.g << ", " << b.b << ", "
+                    << b.a << ")";
+      break;
+    }
+  EXPECT_EQ(std::memcmp(&again.counters, &frame.counters, sizeof(gpu::RenderStats)), 0)
+      << what << "counters differ (segments " << frame.counters.segments << " / "
+      << again.counters.segments << ", shell queries " << frame.counters.shellQueries << " / "
+      << again.counters.shellQueries << ", element steps " << frame.counters.elementSteps << " / "
+      << again.counters.elementSteps << ", lost " << frame.counters.lostRays << " / "
+      << again.counters.lostRays << ")";
+  EXPECT_EQ(again.segments, frame.segments) << what << "segments";
+  EXPECT_EQ(again.fragments, frame.fragments) << what << "fragments";
+  EXPECT_TRUE(sameBits(segments, second.lastSegments())) << what << "segment lists differ";
+  EXPECT_TRUE(sameBits(fragments, second.lastFragments())) << what << "fragment lists differ";
 }
 
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::vector<float>& values,
@@ -59,6 +139,8 @@ GpuRender renderOnGpu(const mesh::UnstructuredMesh& input, const std::vector<flo
   out.image.pixels = out.frame.pixels;
   out.segments = rig.renderer.lastSegments();
   out.fragments = rig.renderer.lastFragments();
+  if (firstRenderOfThisTest())
+    expectOtherTracerAgrees(rig.ctx, rig.scene, rig.compositor, settings, rig.renderer, out.frame);
   out.validationErrors = rig.ctx.validationErrors();
   out.validationWarnings = rig.ctx.validationWarnings();
   return out;

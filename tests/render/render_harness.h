@@ -26,6 +26,7 @@ struct GpuRenderOptions {
   bool compact = true;
   render::ShellGeometry shell = render::ShellGeometry::Boxes;
   comp::CompositorOptions lists;
+  vk::ContextOptions context;  // the rig's context (the SHELLMARCH_* environment applies too)
 };
 
 // One rank's renderer of `mesh` with per-point `values`, kept for several frames (a test that
@@ -41,7 +42,20 @@ struct RenderRig {
   render::Renderer renderer;
 };
 
-// Renders `mesh` (one rank) with the scalars of field `field`, step 0 (zeros if absent).
+// Both tracers (ray queries and the ray tracing pipeline) run the same arithmetic on the same
+// pixels, so where the device offers both they must agree bit for bit. Renders `settings` again
+// (the camera's rays, or `rays` if given) with the tracer that `first` did not use, and expects the
+// same pixels, counters, segment and fragment lists as `frame`, which `first` rendered. Does
+// nothing on a device with one tracer.
+void expectOtherTracerAgrees(const vk::Context& ctx, const render::GpuScene& scene,
+                             comp::DeepCompositor& compositor,
+                             const render::RenderSettings& settings, const render::Renderer& first,
+                             const render::FrameResult& frame,
+                             const std::vector<render::WorldRay>* rays = nullptr);
+
+// Renders `mesh` (one rank) with the scalars of field `field`, step 0 (zeros if absent); the first
+// render of each test case also with the other tracer where the device has both
+// (expectOtherTracerAgrees).
 GpuRender renderOnGpu(const mesh::UnstructuredMesh& mesh, const std::string& field,
                       const render::RenderSettings& settings, const GpuRenderOptions& options = {});
 // Same with explicit per-point scalars.
@@ -68,6 +82,10 @@ struct ImageCheck {
 // output folder and reports where. Returns the error for further checks.
 scene::ImageError expectImagesClose(const std::string& name, const scene::Image& reference,
                                     const scene::Image& result, const ImageCheck& check = {});
+
+// A w x h view of the unit cube from (2.1, -1.3, 1.7), viridis over [0, 6]: for fields of the
+// kind x + 2y + 3z on cubes of a few cells.
+render::RenderSettings cubeView(int width, int height);
 
 // A transfer function with constant colour and opacity (for analytic tests).
 scene::TransferFunction constantTransferFunction(glm::vec3 rgb, float opacity, double unitDistance);

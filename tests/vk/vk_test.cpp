@@ -25,7 +25,7 @@ struct ScalePush {
 
 void runScaleAdd(bool forceStaging) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   o.forceStaging = forceStaging;
   Context ctx(o);
   EXPECT_EQ(ctx.forceStaging(), forceStaging);
@@ -56,7 +56,7 @@ TEST(Vk, StagingPath) {
 
 TEST(Vk, ValidationIsOnInTests) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   Context ctx(o);
   EXPECT_TRUE(ctx.validationEnabled()) << "ctest must run GPU tests with SHELLMARCH_VALIDATION=1";
 }
@@ -68,7 +68,7 @@ TEST(Vk, ValidationIsOnInTests) {
 // fine, so this guards GPU machines.
 TEST(Vk, ContextsMadeOneAfterAnotherKeepFindingTheDriver) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   for (uint32_t i = 0; i < 64; ++i) {
     Context ctx(o);
     Buffer b = makeBuffer<uint32_t>(ctx, std::vector<uint32_t>{i, ~i}, "round trip");
@@ -121,7 +121,7 @@ struct IdsPush {
 // (fewer than its rows) see indices past the items.
 TEST(Vk, DispatchItemsBeyondOneRowReachesEveryItemOnce) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   Context ctx(o);
   // Rows of kGridRowGroups also on devices that take more groups in x (NVIDIA: 2^31 - 1, where
   // 2 * maxX + 3 items overflowed 32 bits and ran in one row).
@@ -154,7 +154,7 @@ struct CarryPush {
 // then past 2^33, 64 000 adds of 70 000 (4.48 G in all) must carry exactly.
 TEST(Vk, CountersCarryPast32Bits) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   Context ctx(o);
   ComputePipeline p(ctx,
                     {"carry_counter", test::spv::carry_counter(), {}, sizeof(CarryPush), false});
@@ -232,7 +232,7 @@ namespace {
 // (the renderer builds count and store variants of one traversal shader this way).
 TEST(Vk, SpecializationVariantsOfOneModuleStayDistinct) {
   ContextOptions o;
-  o.requireRayQuery = false;
+  o.rayTracing = false;
   Context ctx(o);
   std::vector<float> v(64, 1.0f);
   Buffer a = makeBuffer<float>(ctx, v, "a"), b = makeBuffer<float>(ctx, v, "b");

@@ -66,6 +66,8 @@ void checkValidation(const vk::Context& ctx);
 // own. An exception in the child is rethrown here as sm::Error with its message.
 nlohmann::json runInChild(const std::function<nlohmann::json()>& fn);
 
+// The demo capsule's options, as ci/demo.sh generates it (300 k elements, 8 clusters, 4 steps).
+gen::CfdMeshOptions demoMeshOptions();
 // The cached gmsh mesh for these options under workDir, generated (in a child process, which
 // takes minutes for millions of elements) when it is not there yet.
 std::string generatedMesh(const std::string& workDir, const gen::CfdMeshOptions& options);

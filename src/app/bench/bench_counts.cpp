@@ -38,12 +38,7 @@ struct CountArgs {
 
 std::string countMesh(const CountArgs& a) {
   if (!a.mesh.empty()) return a.mesh;
-  gen::CfdMeshOptions o;  // as ci/demo.sh
-  o.targetElements = 300000;
-  o.clusters = 8;
-  o.steps = 4;
-  o.hexBlock = true;
-  return generatedMesh(a.workDir, o);
+  return generatedMesh(a.workDir, demoMeshOptions());
 }
 
 struct DumpSummary {

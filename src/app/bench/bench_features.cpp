@@ -201,13 +201,9 @@ void runFeatureBench(const FeatureArgs& a) {
       a, ctx,
       *makeScene("cube, 110k hexahedra", analytic(gen::CubeSplit::Hex, 48), "vortex", ctx, w, h), t,
       rows);
-  gen::CfdMeshOptions demo;  // as ci/demo.sh
-  demo.targetElements = 300000;
-  demo.clusters = 8;
-  demo.steps = 4;
-  demo.hexBlock = true;
-  auto capsule = makeScene("capsule (demo), 303k mixed",
-                           io::readMesh(generatedMesh(a.workDir, demo)), "vortex", ctx, w, h);
+  auto capsule =
+      makeScene("capsule (demo), 303k mixed",
+                io::readMesh(generatedMesh(a.workDir, demoMeshOptions())), "vortex", ctx, w, h);
   demoTable(a, ctx, *capsule, t, rows);
   rankTable(a, *capsule, t, rows);
   const prep::MemoryReport mem = prep::memoryReport(capsule->compact.rank);

@@ -153,6 +153,15 @@ nlohmann::json runInChild(const std::function<nlohmann::json()>& fn) {
   return j;
 }
 
+gen::CfdMeshOptions demoMeshOptions() {
+  gen::CfdMeshOptions o;
+  o.targetElements = 300000;
+  o.clusters = 8;
+  o.steps = 4;
+  o.hexBlock = true;
+  return o;
+}
+
 std::string generatedMesh(const std::string& workDir, const gen::CfdMeshOptions& o) {
   std::string name =
       concat(o.body == gen::Body::Lander ? "lander" : "capsule", "-", o.targetElements, "-c",

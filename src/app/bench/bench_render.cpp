@@ -56,13 +56,7 @@ std::vector<std::string> splitList(const std::string& s) {
 namespace {
 
 std::string demoMesh(const RenderArgs& a) {
-  if (!a.mesh.empty()) return a.mesh;
-  gen::CfdMeshOptions o;  // as ci/demo.sh
-  o.targetElements = 300000;
-  o.clusters = 8;
-  o.steps = 4;
-  o.hexBlock = true;
-  return generatedMesh(a.workDir, o);
+  return a.mesh.empty() ? generatedMesh(a.workDir, demoMeshOptions()) : a.mesh;
 }
 
 Scenes loadScenes(const RenderArgs& a, const std::string& path) {
@@ -234,6 +228,7 @@ void runRenderBench(RenderArgs& a) {
   sc.setup["reference_bvh_seconds"] = t.seconds();
   vk::ContextOptions vo;
   vo.device = a.device;
+  vo.tracer = parseTracer(a.tracer);
   vk::Context ctx(vo);
   t.reset();
   render::GpuScene compact(ctx, sc.compact.rank), plain(ctx, sc.plain.rank);
@@ -246,6 +241,7 @@ void runRenderBench(RenderArgs& a) {
                                {"plain", memC.plainElements}};
   report["mesh"] = mesh;
   report["device"] = ctx.deviceName();
+  report["tracer"] = vk::tracerName(ctx.tracer());
   report["setup"] = sc.setup;
   report["options"] = {{"field", a.field},
                        {"colormap", a.colormap},
@@ -317,6 +313,8 @@ void configureRenderBench(CLI::App& cmd) {
   cmd.add_option("--work-dir", a->workDir, "Generated mesh, reference images, VTK outputs")
       ->capture_default_str();
   cmd.add_option("--device", a->device, "Vulkan device index or name substring");
+  cmd.add_option("--tracer", a->tracer, "auto, query or pipeline (bench tracers compares them)")
+      ->capture_default_str();
   cmd.add_option("--json", a->json, "Write the results as JSON to this file")
       ->check(writableFile());
   cmd.add_option("--python", a->python, "Python with VTK (python3-vtk9)")->capture_default_str();

@@ -32,6 +32,7 @@ struct RenderArgs {
   std::string pairIntegrators = "preintegration";
   double refTolerance = 1e-4;
   std::string workDir = "out/bench", json, device, python = defaultPython();
+  std::string tracer = "auto";
   bool noVtk = false;
 };
 

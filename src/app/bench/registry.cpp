@@ -24,6 +24,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "The exchange at 72 and 552 ranks from real frames: each virtual rank's share rendered in "
        "turn, its fragment counts dumped and replayed (bytes per rank, load imbalance)",
        configureCountBench},
+      {"tracers",
+       "The two tracers (ray queries, ray tracing pipeline) taking turns on one view: frames, "
+       "stages and throughput of each, their ratio per round, and whether their images agree",
+       configureTracerBench},
   };
   return all;
 }

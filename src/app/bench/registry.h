@@ -26,5 +26,6 @@ void configureRenderBench(CLI::App& cmd);    // bench_render.cpp
 void configureAccuracyBench(CLI::App& cmd);  // bench_accuracy.cpp
 void configureFeatureBench(CLI::App& cmd);   // bench_features.cpp
 void configureCountBench(CLI::App& cmd);     // bench_counts.cpp
+void configureTracerBench(CLI::App& cmd);    // bench_tracers.cpp
 
 }  // namespace sm::app::bench

@@ -167,10 +167,14 @@ struct SHELLMARCH_INSITU_API Image {
 struct Options {
   std::string device;       // "" = the best device; a number = that index; else a name substring
   bool validation = false;  // Khronos validation layer (also on with SHELLMARCH_VALIDATION=1)
+  // How shell crossings are traced: "auto" (ray queries where the device offers them, else a ray
+  // tracing pipeline), "query" or "pipeline". Images are the same either way.
+  std::string tracer = "auto";
 };
 
 struct Stats {
   std::string deviceName;
+  std::string tracer;  // "query" or "pipeline": the one that renders
   uint64_t vertices = 0, elements = 0, shellTriangles = 0;  // this rank, as prepared
   uint64_t geometryBuilds = 0;  // mesh uploads and acceleration structure builds on this rank
   uint64_t scalarUploads = 0;   // field uploads on this rank
