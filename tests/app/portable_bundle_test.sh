@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ci/portable-bundle.sh packs a build that runs from the bundle: with the machine's glibc and with
 # the packed one (forced), the packed binary renders the same image as the build tree's, and the
-# packed validation layer loads.
+# packed validation layer loads; ci/gpu-check.sh runs from it end to end (--small).
 set -uo pipefail
 src=$1 build=$2 sm=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
@@ -42,5 +42,12 @@ check "an Open MPI in LD_LIBRARY_PATH (module load) is used" \
   grep -q "init: $work/module/lib/libmpi.so.40" ld-mpi-module.log
 check "no C++ MPI bindings are needed" bash -c "! grep -q libmpi_cxx ld-mpi.log"
 check "the GPU cases are listed for gpu-check.sh" grep -q "^test_render .*Slab.TetGrid" x/shellmarch/gpu-tests.txt
-[ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
+# The one prepared GPU check, end to end on lavapipe with the bundle just made.
+bash "$src/ci/gpu-check.sh" x/shellmarch gpu-check --small > gpu-check.log 2>&1
+check "ci/gpu-check.sh --small runs to its end" grep -q "gpu-check: done" gpu-check.log
+for step in "bench tracers (demo)" "bench tracers (big)" "test_render" "test_vk" "compositor sweep"; do
+  check "gpu-check: $step exits 0" grep -qF "$step rc=0" gpu-check.log
+done
+check "gpu-check: both tracers' frames, the same image" grep -q "| pipeline | .*same image" gpu-check/summary.md
+[ "$fails" -eq 0 ] || { cat gpu-check.log; echo "$fails check(s) failed"; exit 1; }
 rm -rf b.tar x module  # 300 MB; kept when a check failed
