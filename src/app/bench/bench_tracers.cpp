@@ -233,10 +233,9 @@ void runTracerBench(const TracerArgs& a) {
   mesh::Range r = mesh::fieldRange(*f, 0);
   const std::pair<double, double> range =
       r.empty || !(r.lo < r.hi) ? std::pair{0.0, 1.0} : std::pair{r.lo, r.hi};
-  RankShare whole = share;  // fieldStep reads the field from the mesh preparation empties
   PreparedShare prepared = prepareShare(share, prep::PrepOptions{true}, "", 0, 1);
   render::GpuScene scene(ctx, prepared.rank);
-  scene.setScalars(fieldStep(whole.mesh, prepared.rank, a.field, 0));
+  scene.setScalars(fieldStep(share.mesh, prepared.rank, a.field, 0));
   const uint64_t elements = prepared.rank.numElements();
   nlohmann::json report;
   report["benchmark"] = "tracers";
@@ -247,7 +246,7 @@ void runTracerBench(const TracerArgs& a) {
   report["options"] = {{"field", a.field}, {"rounds", a.rounds}, {"runs", a.runs}};
   for (auto [w, h] : sizes)
     report["sizes"].push_back(
-        measureSize(a, ctx, scene, frameAt(a, whole, range, w, h), tracers, elements));
+        measureSize(a, ctx, scene, frameAt(a, share, range, w, h), tracers, elements));
   const std::string md = table(report);
   std::printf("shellmarch bench tracers: %s (%llu elements) on %s\n%s\n%s", path.c_str(),
               (unsigned long long)elements, ctx.deviceName().c_str(),
