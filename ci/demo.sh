@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The README's first command: installs everything, builds, generates the built-in demo data set (a
-# CFD-like capsule mesh with all four element types, split into non-convex clusters) and renders it
-# to demo/demo.png.
+# The README's first command: installs what the build needs, builds the shellmarch program only
+# (ci/test.sh installs and builds the rest: tests, fuzzers, benchmarks), generates the built-in demo
+# data set (a CFD-like capsule mesh with all four element types, split into non-convex clusters) and
+# renders it to demo/demo.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash ci/install-deps.sh
-bash ci/build.sh
+bash ci/install-deps.sh --build-only
+bash ci/build.sh shellmarch
 export MESA_SHADER_CACHE_DIR=${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}
 mkdir -p demo
 if [ ! -f demo/capsule.pvtu ]; then

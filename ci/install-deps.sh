@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
 # Installs every Debian package shellmarch needs. Idempotent: safe to run on every CI start.
 # Stock bookworm Mesa (22.3) lacks VK_KHR_ray_query on lavapipe, so Mesa comes from bookworm-backports.
+#   ci/install-deps.sh [--build-only]
+# --build-only (ci/demo.sh): what configuring, building and running shellmarch need, without what
+# only the tests, fuzzers, sanitizer runs and Python benchmark peers need (about 150 packages and
+# 190 MB to download fewer); a later run without it installs the rest.
 set -euo pipefail
+build_only=0
+if [ "${1:-}" = --build-only ]; then build_only=1; fi
 
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
@@ -12,17 +18,22 @@ if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.
   echo "deb http://deb.debian.org/debian bookworm-backports main" | $SUDO tee "$backports" >/dev/null
 fi
 
+# GoogleTest is in the build set: configuring with the tests on (ci/build.sh) finds it.
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
-  libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools glslc spirv-tools
+  libvulkan-dev vulkan-tools glslang-tools glslc spirv-tools
   libopenmpi-dev openmpi-bin
   libglfw3-dev libglm-dev libgtest-dev googletest
   libgmsh-dev gmsh libmetis-dev
   libpugixml-dev nlohmann-json3-dev libcli11-dev libstb-dev zlib1g-dev liblz4-dev liblzma-dev libpng-dev
+)
+test_packages=(
+  vulkan-validationlayers
   clang libclang-rt-14-dev
   xvfb xauth
   python3 python3-vtk9 python3-numpy python3-matplotlib
 )
+if [ $build_only = 0 ]; then packages+=("${test_packages[@]}"); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -7,10 +7,25 @@
 # generated sources to target t. The stem is the file name without extension for compute shaders
 # (a.comp: a) and with it for the other stages (b.rgen: b_rgen, c.rint: c_rint); SUFFIX is appended
 # to every stem, for a variant compiled with the macros in DEFINES.
-set(_SHELLMARCH_EMBED_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/spv_to_cpp.cmake")
+#
+# The embedding is done by a host tool built first (tools/spv_embed: target shellmarch_spv_embed);
+# when cross-compiling, CMAKE_CROSSCOMPILING_EMULATOR runs it, or SHELLMARCH_SPV_EMBED names a build
+# of it for the build machine.
+set(SHELLMARCH_SPV_EMBED "" CACHE FILEPATH
+    "spv_embed built for the build machine (cross-compiling only; default: build shellmarch_spv_embed)")
 
 function(shellmarch_embed_shaders)
   cmake_parse_arguments(ARG "" "TARGET;NAMESPACE;HEADER;SUFFIX" "SOURCES;INCLUDE_DIRS;DEFINES" ${ARGN})
+  if(SHELLMARCH_SPV_EMBED)
+    set(embed "${SHELLMARCH_SPV_EMBED}")
+  elseif(CMAKE_CROSSCOMPILING AND NOT CMAKE_CROSSCOMPILING_EMULATOR)
+    message(FATAL_ERROR "Cross-compiling: set SHELLMARCH_SPV_EMBED to spv_embed built for this machine "
+                        "(tools/spv_embed/CMakeLists.txt says how), or CMAKE_CROSSCOMPILING_EMULATOR")
+  else()
+    # A target name as COMMAND: CMake substitutes its path (behind the emulator, if any); as DEPENDS,
+    # the sources are regenerated when the tool is rebuilt.
+    set(embed shellmarch_spv_embed)
+  endif()
   set(outdir "${CMAKE_CURRENT_BINARY_DIR}/shaders_gen")
   file(MAKE_DIRECTORY "${outdir}")
   set(include_flags "")
@@ -44,9 +59,9 @@ function(shellmarch_embed_shaders)
       VERBATIM)
     add_custom_command(
       OUTPUT "${cpp}"
-      COMMAND ${CMAKE_COMMAND} -DIN=${spv} -DOUT=${cpp} -DNAME=${stem} -DNS=${ARG_NAMESPACE}
-              -P "${_SHELLMARCH_EMBED_SCRIPT}"
-      DEPENDS "${spv}" "${_SHELLMARCH_EMBED_SCRIPT}"
+      COMMAND ${embed} "${spv}" "${cpp}" ${stem} ${ARG_NAMESPACE}
+      DEPENDS "${spv}" ${embed}
+      COMMENT "SPIR-V -> C++: ${stem}"
       VERBATIM)
     list(APPEND generated "${cpp}")
     string(APPEND decls "std::span<const uint32_t> ${stem}();\n")
