@@ -4,7 +4,7 @@
 # printed tables (*.md) and JSON in OUT (default out/bench-results). Meshes, CPU references and
 # VTK's outputs are generated once under SHELLMARCH_BENCH_WORK (default out/bench) and reused.
 #
-#   ci/benchmarks.sh [OUT] [NAME ...]    NAME: prep render accuracy features time compositor
+#   ci/benchmarks.sh [OUT] [NAME ...]    NAME: prep render first-image accuracy features time compositor
 #
 # About an hour on 2 cores the first time (the 5-million-element mesh and the converged CPU
 # references dominate), 20 minutes after. Needs a build (ci/build.sh) and python3-vtk9 for the peers.
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 out=${1:-out/bench-results}
 shift || true
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(prep render accuracy features time compositor)
+[ ${#names[@]} -gt 0 ] || names=(prep render first-image accuracy features time compositor)
 work=${SHELLMARCH_BENCH_WORK:-out/bench}
 sm=build/src/app/shellmarch
 comp=build/compositor/shellmarch_bench_compositor
@@ -30,6 +30,17 @@ for name in "${names[@]}"; do
   render)
     "$sm" bench render --sizes 512,1024 --runs 3 --vtk-runs 3 --coarser 2,4,5 --work-dir "$work" \
       --json "$out/render.json" | tee "$out/render.md" ;;
+  first-image)
+    # Start to PNG in fresh processes, cold and warm shader caches, beside VTK's whole process:
+    # a 72 k-element capsule at 256x256 and the demo at 768x576.
+    mesh=$work/capsule-72000-c4.pvtu
+    [ -f "$mesh" ] || "$sm" generate --body capsule --elements 72000 --clusters 4 --out "$mesh"
+    "$sm" bench render --mesh "$mesh" --field density --only-first-image --first-image 256x256 \
+      --first-image-runs 3 --work-dir "$work/first-image-72k" --json "$out/first-image-72k.json" \
+      | tee "$out/first-image-72k.md"
+    "$sm" bench render --field density --only-first-image --first-image 768x576 \
+      --first-image-runs 3 --work-dir "$work" --json "$out/first-image-demo.json" \
+      | tee "$out/first-image-demo.md" ;;
   accuracy)
     "$sm" bench accuracy --size 320x240 --runs 3 --ranks 4 --clusters 32 --work-dir "$work" \
       --json "$out/accuracy.json" --markdown "$out/accuracy.md" --plot "$out/accuracy.png" ;;
@@ -49,8 +60,8 @@ for name in "${names[@]}"; do
         flag=()
         [ $prefetch = on ] || flag=(--no-prefetch)
         mpiexec -n $ranks "$sm" render "$mesh" --field vortex --time all --repeat 3 --size 512x512 \
-          --view iso --out "$work/time/frame.png" --stats --stats-json "$out/time-$ranks-$prefetch.json" \
-          "${flag[@]}" 2>&1 | grep -E "sequence|scalars:" | sed "s/^/ranks $ranks, prefetch $prefetch: /" \
+          --view iso --integration sampled --out "$work/time/frame.png" --stats \
+          --stats-json "$out/time-$ranks-$prefetch.json" "${flag[@]}" 2>&1 | grep -E "sequence|scalars:" | sed "s/^/ranks $ranks, prefetch $prefetch: /" \
           | tee -a "$out/time.md"
       done
     done ;;

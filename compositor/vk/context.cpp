@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,13 +17,15 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
-bool layerAvailable(const char* name) {
+// The layer's spec version, 0 when it is not installed.
+uint32_t layerVersion(const char* name) {
   uint32_t n = 0;
   vkEnumerateInstanceLayerProperties(&n, nullptr);
   std::vector<VkLayerProperties> layers(n);
   vkEnumerateInstanceLayerProperties(&n, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+  for (const VkLayerProperties& l : layers)
+    if (std::strcmp(l.layerName, name) == 0) return l.specVersion;
+  return 0;
 }
 
 bool instanceExtensionAvailable(const char* name) {
@@ -131,6 +134,7 @@ std::vector<DeviceReport> Context::listDevices(const ContextOptions& options) {
 }
 
 Context::Context(const ContextOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
   ContextOptions o = withHiddenFromEnvironment(options);
   o.validation = o.validation || envFlag("SHELLMARCH_VALIDATION");
   forceStaging_ = o.forceStaging || envFlag("SHELLMARCH_FORCE_STAGING");
@@ -142,6 +146,8 @@ Context::Context(const ContextOptions& options) {
     release();
     throw;
   }
+  creationMs_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 Context::~Context() {
@@ -151,6 +157,7 @@ Context::~Context() {
 void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    store_.reset();
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
@@ -175,7 +182,8 @@ void Context::createInstance(const ContextOptions& o) {
   if (debugUtils_) ext.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   validation_ = o.validation;
   if (validation_) {
-    if (!layerAvailable(kValidationLayer))
+    validationLayerVersion_ = layerVersion(kValidationLayer);
+    if (!validationLayerVersion_)
       throw VulkanError(std::string("validation requested but ") + kValidationLayer +
                             " is not installed (Debian: vulkan-validationlayers)",
                         VK_ERROR_LAYER_NOT_PRESENT);
@@ -319,6 +327,16 @@ void Context::createDevice(const ContextOptions& o) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   auto ext = deviceExtensions(o, support);
+  const bool shaderObjects = useShaderObjects(physical_, o, validationLayerVersion_);
+  VkPhysicalDeviceShaderObjectFeaturesEXT so{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_OBJECT_FEATURES_EXT};
+  if (shaderObjects) {
+    so.shaderObject = VK_TRUE;
+    so.pNext = want.f2.pNext;
+    want.f2.pNext = &so;
+    ext.push_back(VK_EXT_SHADER_OBJECT_EXTENSION_NAME);
+    ext.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);  // what the extension requires
+  }
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &want.f2;
   dci.queueCreateInfoCount = 1;
@@ -355,6 +373,9 @@ void Context::createDevice(const ContextOptions& o) {
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = queueFamily_;
   SM_VK(vkCreateCommandPool(device_, &pci, nullptr, &pool_));
+  store_ = std::make_unique<PipelineStore>(
+      physical_, device_, o.cacheDir.empty() ? ShaderCache::defaultFolder() : o.cacheDir,
+      shaderObjects);
 }
 
 void Context::readRayTracingLimits(const ContextOptions& o) {

@@ -18,6 +18,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/handle.h"
+#include "vk/pipeline_store.h"
 
 namespace sm::vk {
 
@@ -30,12 +31,13 @@ const char* tracerName(Tracer t);  // "auto", "query", "pipeline"
 Tracer parseTracer(const std::string& what, const std::string& text);
 
 // Capabilities a context treats as absent although the device has them (ContextOptions::hide, or
-// SHELLMARCH_HIDE=ray_query,ray_tracing_pipeline,raygen_subgroups): tests of the choices made on
-// devices that lack them.
+// SHELLMARCH_HIDE=ray_query,ray_tracing_pipeline,raygen_subgroups,shader_object): tests of the
+// choices made on devices that lack them.
 enum HideBits : uint32_t {
   kHideRayQuery = 1,
   kHideRayTracingPipeline = 2,
   kHideRaygenSubgroups = 4,
+  kHideShaderObject = 8,
 };
 
 struct ContextOptions {
@@ -48,6 +50,9 @@ struct ContextOptions {
   std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a window
   bool swapchain = false;                       // enable VK_KHR_swapchain
   bool forceStaging = false;                    // never map device buffers: exercise staging copies
+  // Where compiled shaders are kept between processes (pipeline_store.h): "" for
+  // ShaderCache::defaultFolder(), "none" for nowhere.
+  std::string cacheDir;
 };
 
 // Extension entry points, loaded with vkGetDeviceProcAddr.
@@ -113,6 +118,10 @@ class Context {
   // hook, as no test can build a shell at the spec's minimum of 2^29 - 1.
   uint64_t asPrimitiveLimit() const { return asPrimitiveLimit_; }
   double timestampPeriodNs() const { return props_.limits.timestampPeriod; }
+  // How pipelines are compiled and kept, and what each cost (the startup statistics).
+  const PipelineStore& pipelines() const { return *store_; }
+  // Milliseconds the constructor took: instance, device and the pipeline cache's loading.
+  double creationMs() const { return creationMs_; }
 
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags want,
                       VkMemoryPropertyFlags avoid = 0) const;
@@ -175,6 +184,9 @@ class Context {
   uint32_t subgroupSize_ = 1;
   uint64_t asPrimitiveLimit_ = 0;
   uint64_t memoryLimit_ = UINT64_MAX;
+  uint32_t validationLayerVersion_ = 0;
+  std::unique_ptr<PipelineStore> store_;
+  double creationMs_ = 0;
   mutable std::atomic<uint64_t> memoryInUse_{0};
   std::atomic<uint64_t> errors_{0}, warnings_{0};
   mutable std::mutex messagesMutex_;

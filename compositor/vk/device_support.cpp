@@ -124,6 +124,23 @@ std::vector<std::string> missingFor(VkPhysicalDevice pd, const ContextOptions& o
   return missing;
 }
 
+bool useShaderObjects(VkPhysicalDevice pd, const ContextOptions& o, uint32_t validationLayer) {
+  VkPhysicalDeviceProperties p;
+  vkGetPhysicalDeviceProperties(pd, &p);
+  if ((o.hide & kHideShaderObject) || p.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return false;
+  // Layers older than the extension (Debian 12's 1.3.239) reject its structures and report every
+  // dispatch of a shader object as one without a pipeline.
+  if (validationLayer && validationLayer < VK_MAKE_API_VERSION(0, 1, 3, 246)) return false;
+  if (!hasExtension(pd, VK_EXT_SHADER_OBJECT_EXTENSION_NAME) ||
+      !hasExtension(pd, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
+    return false;
+  VkPhysicalDeviceShaderObjectFeaturesEXT so{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_OBJECT_FEATURES_EXT};
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &so};
+  vkGetPhysicalDeviceFeatures2(pd, &f2);
+  return so.shaderObject;
+}
+
 bool raygenSubgroups(VkPhysicalDevice pd, const ContextOptions& o) {
   VkPhysicalDeviceSubgroupProperties sg = subgroupProperties(pd);
   return !(o.hide & kHideRaygenSubgroups) &&
@@ -145,9 +162,12 @@ ContextOptions withHiddenFromEnvironment(ContextOptions o) {
       o.hide |= kHideRayTracingPipeline;
     else if (name == "raygen_subgroups")
       o.hide |= kHideRaygenSubgroups;
+    else if (name == "shader_object")
+      o.hide |= kHideShaderObject;
     else if (!name.empty())
       throw std::invalid_argument("SHELLMARCH_HIDE: '" + name +
-                                  "' is not ray_query, ray_tracing_pipeline or raygen_subgroups");
+                                  "' is not ray_query, ray_tracing_pipeline, raygen_subgroups or "
+                                  "shader_object");
     at = end + 1;
   }
   return o;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vk/context.h"
+#include "vk/shader_object_ext.h"
 
 namespace sm::vk {
 
@@ -52,6 +53,10 @@ struct FeatureChain {
 bool hasExtension(VkPhysicalDevice pd, const char* name);
 // Everything `pd` lacks for `o`, in words for the device report; empty when it is usable.
 std::vector<std::string> missingFor(VkPhysicalDevice pd, const ContextOptions& o);
+// Whether compute shaders are made as shader objects, so that their binaries can be stored
+// (pipeline_store.h): on CPU devices that offer VK_EXT_shader_object, unless hidden or validated
+// by a layer (`validationLayer`: its spec version, 0 for none) too old to know the extension.
+bool useShaderObjects(VkPhysicalDevice pd, const ContextOptions& o, uint32_t validationLayer);
 // Whether ray generation shaders may use subgroup basic, vote and arithmetic operations.
 bool raygenSubgroups(VkPhysicalDevice pd, const ContextOptions& o);
 // Preference among usable devices: discrete, integrated, virtual, CPU, other (lower first).

@@ -1,12 +1,18 @@
 #include "vk/pipeline.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <string>
 
 #include "vk/vk_error.h"
 
 namespace sm::vk {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
 
 Specialization::Specialization(const std::vector<SpecConstant>& constants) {
   for (const SpecConstant& c : constants) {
@@ -90,20 +96,34 @@ void PipelineBindings::bind(VkCommandBuffer cmd, VkPipelineBindPoint point, cons
 
 ComputePipeline::ComputePipeline(const Context& ctx, const PipelineDesc& d)
     : ctx_(&ctx),
-      module_(makeShaderModule(ctx, d.spirv, d.name)),
       bindings_(ctx, VK_SHADER_STAGE_COMPUTE_BIT, d.pushConstantBytes, d.accelerationStructure) {
+  const auto start = std::chrono::steady_clock::now();
   Specialization spec(d.specialization);
-  VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  cci.stage.module = module_.get();
-  cci.stage.pName = "main";
-  cci.stage.pSpecializationInfo = spec.info();
-  cci.layout = bindings_.layout();
-  VkPipeline p;
-  SM_VK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &cci, nullptr, &p));
-  pipeline_ = DeviceHandle<VkPipeline>(ctx.device(), p, vkDestroyPipeline);
-  ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
+  const PipelineStore& store = ctx.pipelines();
+  bool fromCache = false;
+  if (store.shaderObjects()) {
+    const VkDescriptorSetLayout setLayout = bindings_.setLayout();
+    shader_ = store.createComputeShader(
+        {d.name, d.spirv, spec.info(),
+         setLayout ? std::span(&setLayout, 1) : std::span<const VkDescriptorSetLayout>(),
+         d.pushConstantBytes},
+        fromCache);
+    ctx.setName(VK_OBJECT_TYPE_SHADER_EXT, uint64_t(shader_.get()), d.name);
+  } else {
+    module_ = makeShaderModule(ctx, d.spirv, d.name);
+    VkComputePipelineCreateInfo cci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    cci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cci.stage.module = module_.get();
+    cci.stage.pName = "main";
+    cci.stage.pSpecializationInfo = spec.info();
+    cci.layout = bindings_.layout();
+    VkPipeline p;
+    SM_VK(vkCreateComputePipelines(ctx.device(), store.pipelineCache(), 1, &cci, nullptr, &p));
+    pipeline_ = DeviceHandle<VkPipeline>(ctx.device(), p, vkDestroyPipeline);
+    ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
+  }
+  store.record({d.name, millisecondsSince(start), fromCache});
 }
 
 void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) {
@@ -112,7 +132,10 @@ void ComputePipeline::setAccelerationStructure(VkAccelerationStructureKHR tlas) 
 
 void ComputePipeline::dispatch(VkCommandBuffer cmd, uint32_t gx, uint32_t gy, uint32_t gz,
                                const void* push, uint32_t pushBytes) const {
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  if (shader_)
+    ctx_->pipelines().bindCompute(cmd, shader_.get());
+  else
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   bindings_.bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, push, pushBytes);
   if (gx && gy && gz) vkCmdDispatch(cmd, gx, gy, gz);
 }

@@ -1,10 +1,12 @@
 // Compute pipelines built from embedded SPIR-V, specialised to the scene with specialization
-// constants, parameters passed as push constants
+// constants, parameters passed as push constants. On CPU devices with VK_EXT_shader_object a
+// "pipeline" is a compute shader object whose binary is kept between processes (pipeline_store.h)
 // (buffer addresses and small values). A pipeline that traces rays owns one descriptor set with the
 // top-level acceleration structure at set 0, binding 0 (ray_tracing_pipeline.h: the same for ray
 // tracing pipelines).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -46,6 +48,7 @@ class PipelineBindings {
   PipelineBindings(const Context& ctx, VkShaderStageFlags stages, uint32_t pushConstantBytes,
                    bool accelerationStructure);
   VkPipelineLayout layout() const { return layout_.get(); }
+  VkDescriptorSetLayout setLayout() const { return setLayout_.get(); }
   void setAccelerationStructure(VkAccelerationStructureKHR tlas);
   // Binds the descriptor set (if any) and pushes `pushBytes` of constants.
   void bind(VkCommandBuffer cmd, VkPipelineBindPoint point, const void* push,
@@ -63,6 +66,9 @@ class PipelineBindings {
 // A shader module of `spirv`, debug-named.
 DeviceHandle<VkShaderModule> makeShaderModule(const Context& ctx, std::span<const uint32_t> spirv,
                                               const std::string& name);
+
+// For the startup statistics (PipelineStore::record).
+double millisecondsSince(std::chrono::steady_clock::time_point start);
 
 inline uint32_t groupsFor(uint64_t items, uint32_t groupSize) {
   return uint32_t((items + groupSize - 1) / groupSize);
@@ -107,7 +113,7 @@ class ComputePipeline {
     GroupGrid g = gridFor(items, itemsPerGroup);
     dispatch(cmd, g.x, g.y, 1, &push, sizeof(T));
   }
-  bool valid() const { return bool(pipeline_); }
+  bool valid() const { return bool(pipeline_) || bool(shader_); }
 
  private:
   GroupGrid gridFor(uint64_t items, uint32_t itemsPerGroup) const;
@@ -115,7 +121,8 @@ class ComputePipeline {
   const Context* ctx_ = nullptr;
   DeviceHandle<VkShaderModule> module_;
   PipelineBindings bindings_;
-  DeviceHandle<VkPipeline> pipeline_;
+  DeviceHandle<VkPipeline> pipeline_;  // or, where the context makes shader objects:
+  DeviceHandle<VkShaderEXT> shader_;
 };
 
 // GPU timestamps for per-stage timing.

@@ -1,5 +1,6 @@
 #include "vk/ray_tracing_pipeline.h"
 
+#include <chrono>
 #include <cstring>
 #include <memory>
 
@@ -99,16 +100,19 @@ RayTracingPipeline::RayTracingPipeline(const Context& ctx, const RayTracingPipel
   ci.maxPipelineRayRecursionDepth = 1;
   ci.layout = bindings_.layout();
   VkPipeline p = VK_NULL_HANDLE;
+  const auto start = std::chrono::steady_clock::now();
   // SHELLMARCH_FAIL_RAY_TRACING_PIPELINE=1: the driver's failure, for the tests of its message.
-  VkResult made = envFlag("SHELLMARCH_FAIL_RAY_TRACING_PIPELINE")
-                      ? VK_ERROR_INITIALIZATION_FAILED
-                      : ctx.fn().createRayTracingPipelines(ctx.device(), VK_NULL_HANDLE,
-                                                           VK_NULL_HANDLE, 1, &ci, nullptr, &p);
+  VkResult made =
+      envFlag("SHELLMARCH_FAIL_RAY_TRACING_PIPELINE")
+          ? VK_ERROR_INITIALIZATION_FAILED
+          : ctx.fn().createRayTracingPipelines(
+                ctx.device(), VK_NULL_HANDLE, ctx.pipelines().pipelineCache(), 1, &ci, nullptr, &p);
   if (made != VK_SUCCESS)
     throw VulkanError(ctx.deviceName() + " failed to create the ray tracing pipeline '" + d.name +
                           "' (" + resultName(made) + ")",
                       made);
   pipeline_ = DeviceHandle<VkPipeline>(ctx.device(), p, vkDestroyPipeline);
+  ctx.pipelines().record({d.name, millisecondsSince(start), false});
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p), d.name);
   buildBindingTable(ctx, uint32_t(list.groups.size()), d.name);
 }

@@ -198,11 +198,39 @@ uint faceOf(uint type, uint v[8], ElementGeom g, int f, out uint e0, out uint e1
   return n;
 }
 
+// The parametric corner of local vertex i (VTK's order; a pyramid's apex at the middle of its top).
+vec3 parametricCorner(uint type, uint i) {
+  if (type == SM_WED) return vec3(float(i == 1u || i == 4u), float(i == 2u || i == 5u), float(i >= 3u));
+  if (type == SM_PYR && i == 4u) return vec3(0.5, 0.5, 1.0);
+  uint j = i & 3u;
+  return vec3(float(j == 1u || j == 2u), float(j >= 2u), float(i >= 4u));
+}
+
+// Element-exact integration's first Newton guess for the point where the ray crosses face f: the
+// ray's barycentric coordinates (the origin of the ray frame) in the projection of the triangle of
+// the face's first three vertices, applied to their parametric corners; exact on a triangle and
+// on a parallelogram. The element's centre where that triangle is degenerate in projection.
+vec3 faceGuess(uint type, ElementGeom g, int f) {
+  vec3 guess = parametricCenter(type);
+  [[unroll]] for (uint ff = 0u; ff < SM_MAX_FACES; ++ff) {
+    if (ff >= SM_NUM_FACES[type] || uint(f) != ff) continue;
+    uint la = smFaceVert(type, ff, 0u), lb = smFaceVert(type, ff, 1u), lc = smFaceVert(type, ff, 2u);
+    vec2 A = g.P[la].xy, ab = g.P[lb].xy - A, ac = g.P[lc].xy - A;
+    float d = ab.x * ac.y - ab.y * ac.x;
+    float wb = (ac.x * A.y - ac.y * A.x) / d, wc = (ab.y * A.x - ab.x * A.y) / d;
+    vec3 ca = parametricCorner(type, la);
+    vec3 q = ca + wb * (parametricCorner(type, lb) - ca) + wc * (parametricCorner(type, lc) - ca);
+    if (abs(d) > 0.0 && !any(isnan(q)) && !any(isinf(q))) guess = clamp(q, vec3(0.0), vec3(1.0));
+  }
+  return guess;
+}
+
 // One step through element (type, index) entered by walk w: the exit face (or -1 when the walk is
-// lost), its crossing, neighbour and vertices; g receives the element's geometry.
+// lost), its crossing, neighbour and vertices; g receives the element's geometry, and in
+// element-exact mode, walking forward, guess the parametric point of the entry (faceGuess).
 int stepOf(RayFrame fr, SceneRefs sc, uint type, uint index, Walk w, FaceCarry c, bool carried, int side,
            out ElementGeom g, out float t, out vec2 slope, out float s, out uint ref, out uint n, out uint e0,
-           out uint e1, out uint e2, out uint e3, out FaceCarry ce) {
+           out uint e1, out uint e2, out uint e3, out FaceCarry ce, inout vec3 guess) {
   t = 0.0;
   slope = vec2(0.0);
   s = 0.0;
@@ -214,6 +242,7 @@ int stepOf(RayFrame fr, SceneRefs sc, uint type, uint index, Walk w, FaceCarry c
   int entry = decodeOf(sc, type, index, w.k, w.kn, v);
   if (entry < 0) return -1;
   geometryOf(fr, sc, type, v, w, c, carried, g);
+  if (kElementExact && side > 0) guess = faceGuess(type, g, entry);
   int f = crossingOf(type, v, g, entry, side, w.tIn, w.slopeIn, t, slope, s);
   if (f < 0) return -1;
   ref = neighborOf(sc, type, index, uint(f));

@@ -92,6 +92,71 @@ void invertIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
   }
 }
 
+// Position and Jacobian (columns d/dr, d/ds, d/dt) at parametric point p, from one evaluation of
+// the shape functions.
+void positionAndJacobian(uint type, vec3 P[8], vec3 p, out vec3 x, out mat3 J) {
+  float N[8];
+  vec3 dN[8];
+  shapeFunctions(type, p, N, dN);
+  x = vec3(0.0);
+  J = mat3(0.0);
+  [[unroll]] for (uint i = 0u; i < 8u; ++i) {
+    x += N[i] * P[i];
+    J[0] += dN[i].x * P[i];
+    J[1] += dN[i].y * P[i];
+    J[2] += dN[i].z * P[i];
+  }
+}
+
+// invertIsoparametric for element-exact integration, whose guesses are close (the entry face, a
+// step along the Jacobian): the same tolerance and step halving, but the position comes with the
+// Jacobian from one evaluation of the shape functions, and a Newton step within the tolerance is
+// taken and ends the search instead of costing another iteration to confirm. Jinv receives the
+// inverse Jacobian at the last point evaluated (zero if none was invertible).
+void solveIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p, out mat3 Jinv) {
+  vec3 res;
+  mat3 J;
+  positionAndJacobian(type, P, p, res, J);
+  res -= x;
+  float rn = dot(res, res);
+  Jinv = mat3(0.0);
+  SM_NO_UNROLL for (int it = 0; it < 16; ++it) {
+    if (!(abs(determinant(J)) > 1e-30)) return;
+    Jinv = inverse(J);
+    vec3 delta = -(Jinv * res);
+    if (max(abs(delta.x), max(abs(delta.y), abs(delta.z))) <= 1e-6) {
+      p = clamp(p + delta, vec3(-1.0), vec3(2.0));
+      return;
+    }
+    bool accepted = false;
+    vec3 pn = p, rnext = res;
+    mat3 Jn = J;
+    float rnn = rn;
+    SM_NO_UNROLL for (int h = 0; h < 6 && !accepted; ++h) {
+      pn = clamp(p + delta, vec3(-1.0), vec3(2.0));
+      positionAndJacobian(type, P, pn, rnext, Jn);
+      rnext -= x;
+      rnn = dot(rnext, rnext);
+      accepted = rnn < rn;
+      delta *= 0.5;
+    }
+    if (!accepted) return;  // no descent along the Newton direction: as good as it gets
+    p = pn;
+    res = rnext;
+    rn = rnn;
+    J = Jn;
+  }
+}
+
+// One Newton step from p toward the parametric point of x: from a guess within e of it, what
+// remains is of the order of e squared.
+void correctIsoparametric(uint type, vec3 P[8], vec3 x, inout vec3 p) {
+  vec3 pos;
+  mat3 J;
+  positionAndJacobian(type, P, p, pos, J);
+  if (abs(determinant(J)) > 1e-30) p = clamp(p - inverse(J) * (pos - x), vec3(-1.0), vec3(2.0));
+}
+
 // Euclidean projection of (r, s) onto the triangle r, s >= 0, r + s <= 1.
 vec2 projectToTriangle(vec2 q) {
   if (max(q.x, 0.0) + max(q.y, 0.0) <= 1.0) return max(q, vec2(0.0));

@@ -85,6 +85,7 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
     uint e0, e1, e2, e3 = 0u;
     FaceCarry ce;
     vec3 tetGrad = vec3(0.0);
+    vec3 guess = parametricCenter(type);  // Newton's start: the centre (element-exact: stepOf's)
     if (type == SM_TET) {
       // Decoded as (k0, k2, k1, fourth), entered through face 3 (xor_codec.h); the entry face's
       // vertices come from the carry.
@@ -161,11 +162,11 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
     } else {
       // One inlined copy per type, so that each has constant tables (element_step.glsl).
       if (type == SM_HEX)
-        f = stepOf(fr, sc, SM_HEX, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+        f = stepOf(fr, sc, SM_HEX, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce, guess);
       else if (type == SM_WED)
-        f = stepOf(fr, sc, SM_WED, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+        f = stepOf(fr, sc, SM_WED, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce, guess);
       else
-        f = stepOf(fr, sc, SM_PYR, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce);
+        f = stepOf(fr, sc, SM_PYR, index, w, c, carried, side, g, t, slope, s, ref, n, e0, e1, e2, e3, ce, guess);
       if (f < 0) {
         r.status = MARCH_LOST;
         return r;
@@ -174,7 +175,6 @@ MarchResult walk(RayFrame fr, FrameParams fp, inout Walk w, int side, float tLim
     if (side > 0) {
       t = max(t, w.tIn);
       float a = max(w.tIn, tLimit);
-      vec3 guess = parametricCenter(type);  // Newton starts at each element's centre
       if (t > a) integrateElement(fr, fp, type, g, tetGrad, w.tIn, t, w.sIn, s, a, t, guess, r.color, r.samples, kNext, tfc);
       r.tEnd = t;
       // Past the clip planes' span nothing more is sampled: the walk stops as if it left the volume.

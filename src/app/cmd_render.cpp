@@ -1,16 +1,43 @@
 // shellmarch render MESH --field NAME [--time K|A:B[:S]|t=TIME|all] [--size WxH] [camera]
 //                        [transfer function] [--step DT] [--clusters N] [--out FILE.png] [--stats]
 //                        [--repeat R] [--no-prefetch] [--orbit N] [--legend]
+//                        [--compare BASELINE [--tolerance LEVELS] [--max-share FRACTION]]
+#include <filesystem>
+#include <iostream>
 #include <memory>
+#include <optional>
 
 #include "app/cli_parsers.h"
 #include "app/commands.h"
+#include "app/image_check.h"
 #include "app/render_job.h"
 #include "app/run_parallel.h"
 #include "app/scene_options.h"
+#include "app/time_selection.h"
 #include "common/error.h"
 
 namespace sm::app {
+namespace {
+
+// render --compare: refused before any work (exit status 2, as `compare`) when the image cannot be
+// checked: a sequence, a baseline that --out would overwrite, or one unreadable or of another size.
+void checkBaseline(const RenderJob& job, CheckFiles& check) {
+  if (selectsSequence(job.time) || job.orbit > 1)
+    throw UsageError("--compare: checks one image, not a sequence (--time ", job.time,
+                     job.orbit > 1 ? concat(", --orbit ", job.orbit) : std::string(), ")");
+  check.result = job.out;
+  std::error_code ec;
+  if (std::filesystem::equivalent(job.out, check.baseline, ec))
+    throw UsageError("--compare: '", check.baseline, "' is also the file of --out");
+  checkOutputNames(check);
+  const CheckImage baseline = readCheckImage(check.baseline, "--compare");
+  if (baseline.image.width != job.width || baseline.image.height != job.height)
+    throw UsageError("--compare: '", check.baseline, "' is ", baseline.image.width, "x",
+                     baseline.image.height, " pixels, the image rendered ", job.width, "x",
+                     job.height, " (--size)");
+}
+
+}  // namespace
 
 void registerRender(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a mesh to a PNG (data-parallel under mpirun)");
@@ -42,17 +69,33 @@ void registerRender(CLI::App& app) {
                   "Turn the camera 360/N degrees about its up axis through the point looked at "
                   "each frame: with one time step, N frames (one turn) as a numbered image "
                   "sequence; with several, one frame per step");
+  auto check = std::make_shared<CheckFiles>();
+  check->resultRole = "--out";
+  check->baselineRole = "--compare";
+  CLI::Option* compare = cmd->add_option(
+      "--compare", check->baseline,
+      "Then check the image against this baseline (.png or .pfm) as `shellmarch compare` does, "
+      "writing OUT.diff.png: exit status 1 beyond the tolerance");
+  auto [tolerance, maxShare] = addToleranceOptions(cmd, check->tolerance);
+  tolerance->needs(compare);
+  maxShare->needs(compare);
   cmd->add_flag_callback(
       "--no-prefetch", [job] { job->prefetch = false; },
       "Load each step when its frame starts instead of while the frame before renders");
-  cmd->callback([cmd, job, raw] {
+  cmd->callback([cmd, job, raw, check] {
     applySceneOptions(*raw, *job);
     // 0 is "no orbit" inside; given on the command line it is a mistake like a negative count.
     if (cmd->count("--orbit") && job->orbit < 1)
       throw Error("--orbit: must be at least 1, not ", job->orbit);
     if (!raw->text["--composite"].empty())
       job->composite = parseCompositeMethod(raw->text["--composite"]);
-    runParallel([&](Collectives& coll) { runRender(*job, coll); });
+    if (!check->baseline.empty()) checkBaseline(*job, *check);
+    std::optional<ImageCheck> checked;  // on rank 0
+    runParallel([&](Collectives& coll) {
+      runRender(*job, coll);
+      if (!check->baseline.empty() && coll.rank() == 0) checked = runImageCheck(*check, std::cout);
+    });
+    if (checked && !checked->passed) throw Error(checkFailure(*checked, *check));
   });
 }
 

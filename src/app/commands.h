@@ -4,7 +4,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/error.h"
+
 namespace sm::app {
+
+// A user error reported like a command line the parser refused: one line, exit status 2. For
+// `compare` (and `render --compare`), whose status 1 means images beyond the tolerance, as cmp's
+// and diff's does: unreadable images, images of different sizes, unwritable outputs.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
 
 void registerInfo(CLI::App& app);      // cmd_info.cpp
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
@@ -12,5 +22,6 @@ void registerRender(CLI::App& app);    // cmd_render.cpp
 void registerBench(CLI::App& app);     // cmd_bench.cpp (subcommands: bench/registry.cpp)
 void registerView(CLI::App& app);      // cmd_view.cpp
 void registerDevices(CLI::App& app);   // cmd_devices.cpp
+void registerCompare(CLI::App& app);   // cmd_compare.cpp
 
 }  // namespace sm::app

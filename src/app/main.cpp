@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   sm::app::registerBench(app);
   sm::app::registerView(app);
   sm::app::registerDevices(app);
+  sm::app::registerCompare(app);
   try {
     app.name(argv[0]);
     app.parse(sm::app::parserArguments(argc, argv));
@@ -74,6 +75,9 @@ int main(int argc, char** argv) {
     // command line the parser refuses, as getopt tools do, not CLI11's per-kind codes (104,
     // 105...).
     printError(sm::printableLine(e.what()) + " (see --help)");
+    return kUsageError;
+  } catch (const sm::app::UsageError& e) {  // compare's unreadable or mismatched images
+    printError(sm::printableLine(e.what()));
     return kUsageError;
   } catch (const sm::Error& e) {
     // Messages quote names from input files: one printable line on the terminal.

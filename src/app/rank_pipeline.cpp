@@ -16,7 +16,7 @@ PreparedShare prepareShare(RankShare& share, const prep::PrepOptions& options,
   prep::GlobalFrame frame = prep::makeGlobalFrame(share.wholeBounds);
   std::string path;
   uint64_t key = 0;
-  if (!cacheDir.empty()) {
+  if (!cacheDir.empty() && cacheDir != "none") {
     std::string layout = concat("rank ", rank, " of ", ranks, ", clusters");
     for (int c : share.clusters) layout += concat(" ", c);
     key = prep::cacheKey(share.mesh, frame, options, layout);

@@ -26,6 +26,7 @@
 #include "common/timer.h"
 #include "io/mesh_io.h"
 #include "render/frame_defaults.h"
+#include "render/preintegration.h"
 #include "render/renderer.h"
 #include "scene/image.h"
 #include "scene/legend.h"
@@ -128,7 +129,8 @@ void writeFrame(const Frames& f, const FramePlan& p, render::FrameResult& frame)
 // Renders the steps job.repeat times. Each frame's scalars were read and uploaded while the frame
 // before rendered (prefetch), or are loaded at its start (--no-prefetch, and the first frame);
 // a frame whose step is the one shown already (one step rendered repeatedly) loads nothing.
-void renderFrames(const Frames& f) {
+// Returns the first frame's timings (the startup statistics).
+render::FrameTimings renderFrames(const Frames& f) {
   const size_t perRun = f.plan.size(), total = perRun * size_t(f.job.repeat);
   auto stepOf = [&](size_t i) { return f.plan[i % perRun].step; };
   render::RenderSettings settings = f.settings;
@@ -136,12 +138,14 @@ void renderFrames(const Frames& f) {
   StepLoads loads(f.source, f.rank, f.gpu);
   std::optional<uint64_t> shown;  // the step whose scalars frames read
   render::FrameResult frame;      // its pixels' storage is handed from frame to frame
+  std::optional<render::FrameTimings> first;
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
     loads.loadFor(f.field, stepOf(0));
     shown = stepOf(0);
     settings.camera = f.plan[0].camera;
     frame = f.renderer.render(settings);
+    first = frame.timings;
   }
   for (size_t i = 0; i < total; ++i) {
     fault::atFrame(i);
@@ -154,11 +158,13 @@ void renderFrames(const Frames& f) {
     settings.camera = f.plan[i % perRun].camera;
     Timer renderTimer;
     frame = f.renderer.render(settings, std::move(frame.pixels));
+    if (!first) first = frame.timings;
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
     stats.addFrame(int(i / perRun), stepOf(i), frameMs, renderMs, scalars);
     if (i < perRun) writeFrame(f, f.plan[i], frame);
   }
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
+  return first.value_or(render::FrameTimings{});
 }
 
 // The files a job writes, by option (the heatmaps by their combined image; the per-rank ones sit
@@ -298,12 +304,17 @@ void runRender(const RenderJob& job, Collectives& coll) {
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
                     ctx.deviceName(), vk::tracerName(renderer.tracer()), s);
     report.setHostMemory(peakAfterLoad);
-    renderFrames(
+    const render::FrameTimings first = renderFrames(
         {job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
+    report.setStartup(ctx, first.totalMs, first.traversalMs + first.marchMs);
     report.finish(ctx.validationErrors());
   } catch (const vk::DeviceMemoryError& e) {
-    throw Error(
-        listMemoryAdvice(e, ctx, gpu.deviceBytes(), job.width, job.height, job.lists, coll.size()));
+    // Element-exact frames hold the pre-integrated transfer function beside the scene.
+    const uint64_t table = s.integration == render::Integration::ElementExact
+                               ? render::preintegrationDeviceBytes(s.transferFunction)
+                               : 0;
+    throw Error(listMemoryAdvice(e, ctx, gpu.deviceBytes() + table, job.width, job.height,
+                                 job.lists, coll.size()));
   }
 }
 

@@ -36,10 +36,10 @@ struct RenderJob {
   bool compact = true;
   std::string device;
   vk::Tracer tracer = vk::Tracer::Auto;
-  std::string cacheDir;                // "" = no preparation cache
+  std::string cacheDir;  // "" = shaders in the default folder, no preparation cache; "none"
   std::string out = "shellmarch.png";  // .png or .pfm (float, for comparisons finer than 8 bits)
   comp::CompositeMethod composite = comp::CompositeMethod::Deep;
-  render::Integration integration = render::Integration::Sampled;
+  render::Integration integration = render::Integration::ElementExact;  // --integration
   render::Shading shading;
   std::vector<scene::ClipPlane> clipPlanes;  // --clip
   // --opacity: replaces the colour map's opacity (for the field rendered; in the viewer, the

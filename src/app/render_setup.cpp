@@ -136,7 +136,8 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
                 finest * 0x1p24, "): move the eye closer or give --step of at least ", finest);
   // Checked here against the whole data set too, so that every rank refuses the step alike.
   render::checkStep(s.dt, s.camera.eye, share.wholeBounds);
-  // Element-exact integration takes no samples, so any step gives the same image there.
+  // Element-exact integration takes no samples (the step only bounds the pieces of non-linear
+  // cells), so a step beyond the data is harmless there.
   if (job.integration == render::Integration::Sampled)
     render::checkStepNotBeyondData(s.dt, share.wholeBounds);
   s.earlyTermination = job.earlyTermination;
@@ -153,6 +154,7 @@ vk::ContextOptions contextOptions(const RenderJob& job) {
   vk::ContextOptions vo;
   vo.device = job.device;
   vo.tracer = job.tracer;
+  vo.cacheDir = job.cacheDir;
   return vo;
 }
 

@@ -50,6 +50,7 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   mem.accelerationStructures = gpu.accelerationStructureBytes();
   json_["device"] = device;
   json_["tracer"] = tracer;
+  json_["integration"] = s.integration == render::Integration::Sampled ? "sampled" : "exact";
   json_["dt"] = s.dt;
   json_["clip_planes"] = nlohmann::json::array();
   for (const scene::ClipPlane& p : s.clipPlanes)
@@ -68,6 +69,30 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["shell_triangles_per_rank"] = spread(double(rank.numShellTriangles()));
   json_["device_bytes_max_rank"] = coll_.max(double(gpu.deviceBytes()));
   json_["memory_rank0"] = mem;
+}
+
+void StatsReport::setStartup(const vk::Context& ctx, double firstFrameMs,
+                             double firstFrameDeviceMs) {
+  const vk::PipelineStore& store = ctx.pipelines();
+  double pipelinesMs = 0;
+  uint64_t fromCache = 0;
+  nlohmann::json list = nlohmann::json::array();
+  for (const vk::PipelineTiming& t : store.timings()) {
+    pipelinesMs += t.ms;
+    fromCache += t.fromCache;
+    list.push_back({{"name", t.name}, {"ms", t.ms}, {"from_cache", t.fromCache}});
+  }
+  nlohmann::json j;
+  j["context_ms"] = coll_.max(ctx.creationMs());
+  j["pipelines_ms"] = coll_.max(pipelinesMs);
+  j["pipelines_rank0"] = list;
+  j["pipelines_from_cache_rank0"] = fromCache;
+  j["cache_folder"] = store.files().folder();
+  j["shader_objects"] = store.shaderObjects();
+  j["cache_files_rejected"] = coll_.sum(store.files().rejected());
+  j["first_frame_ms"] = coll_.max(firstFrameMs);
+  j["first_frame_device_ms"] = coll_.max(firstFrameDeviceMs);
+  json_["startup"] = j;
 }
 
 void StatsReport::setHostMemory(uint64_t peakAfterLoad) {
@@ -165,6 +190,30 @@ void StatsReport::printSetup() const {
   }
 }
 
+void StatsReport::printStartup() const {
+  if (!json_.contains("startup")) return;
+  const auto& j = json_["startup"];
+  const auto& list = j["pipelines_rank0"];
+  const std::string folder = j["cache_folder"].get<std::string>();
+  std::printf(
+      "  startup: context %.0f ms; %zu pipelines in %.0f ms, %llu from the shader cache (%s%s); "
+      "first frame %.0f ms, tracing on the device %.0f ms (slowest rank)\n",
+      j["context_ms"].get<double>(), list.size(), j["pipelines_ms"].get<double>(),
+      (unsigned long long)j["pipelines_from_cache_rank0"].get<uint64_t>(),
+      folder.empty() ? "none" : folder.c_str(),
+      j["shader_objects"].get<bool>() ? ", shader objects" : ", pipelines",
+      j["first_frame_ms"].get<double>(), j["first_frame_device_ms"].get<double>());
+  std::string line = "    pipelines (rank 0):";
+  for (size_t i = 0; i < list.size(); ++i) {
+    char item[160];
+    std::snprintf(item, sizeof item, "%s %s %.1f ms%s", i ? "," : "",
+                  list[i]["name"].get<std::string>().c_str(), list[i]["ms"].get<double>(),
+                  list[i]["from_cache"].get<bool>() ? " (cached)" : "");
+    line += item;
+  }
+  std::printf("%s\n", line.c_str());
+}
+
 void StatsReport::printFrame(const nlohmann::json& fr) const {
   auto u = [&](const char* k) { return (unsigned long long)fr[k].get<uint64_t>(); };
   // Fused frames trace (traverse and march) in one pass; a two-pass frame's second pass then
@@ -223,6 +272,7 @@ void StatsReport::finish(uint64_t validationErrors) {
   json_["validation_errors"] = errors;
   if (coll_.rank() == 0 && job_.stats) {
     printSetup();
+    printStartup();
     for (const auto& fr : json_["frames"]) printFrame(fr);
     if (json_.contains("sequence")) printSequenceSummary(json_["sequence"]);
   }

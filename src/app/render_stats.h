@@ -12,6 +12,7 @@
 #include "render/gpu_scene.h"
 #include "render/render_settings.h"
 #include "render/renderer.h"
+#include "vk/context.h"
 
 namespace sm::app {
 
@@ -38,6 +39,9 @@ class StatsReport {
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
   void addFrame(uint64_t step, const scene::Camera& camera, const render::FrameResult& frame,
                 const render::Renderer& renderer, comp::DeepCompositor& compositor);
+  // What the first frame cost before and while rendering: the context, each pipeline's creation
+  // (from the shader cache or compiled), the first frame's wall and device time. Collective.
+  void setStartup(const vk::Context& ctx, double firstFrameMs, double firstFrameDeviceMs);
   // The step sequence's summary (SequenceStats), printed after the frames and kept as "sequence".
   void setSequence(nlohmann::json summary) { json_["sequence"] = std::move(summary); }
   // Prints (rank 0) and writes JSON; throws when validation reported errors.
@@ -54,6 +58,7 @@ class StatsReport {
   // (collective).
   nlohmann::json spread(double v) const;
   void printSetup() const;
+  void printStartup() const;
   void printFrame(const nlohmann::json& fr) const;
 };
 

@@ -48,7 +48,7 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                   "data's diagonal / 256)");
   cmd->add_option(
       "--integration", t["--integration"],
-      "sampled (fixed step on a global grid, default) or exact (pre-integrated per element)");
+      "exact (pre-integrated per element, default) or sampled (fixed step on a global grid)");
   cmd->add_flag("--all-type-pipelines", job.allTypePipelines,
                 "Benchmarks: pipelines for every element type whatever the mesh holds")
       ->group("");  // hidden: measures what specialisation saves
@@ -83,7 +83,10 @@ void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
   cmd->add_option("--tracer", t["--tracer"],
                   "How shell crossings are traced: auto (default: ray queries where the device "
                   "offers them, else a ray tracing pipeline), query or pipeline");
-  cmd->add_option("--cache-dir", job.cacheDir, "Folder for the preparation cache (off by default)");
+  cmd->add_option("--cache-dir", job.cacheDir,
+                  "Folder for the caches: compiled shaders (by default $SHELLMARCH_CACHE_DIR, "
+                  "$XDG_CACHE_HOME/shellmarch or ~/.cache/shellmarch) and prepared meshes (only "
+                  "with this option); 'none' for no cache");
 }
 
 void applySceneOptions(SceneOptionText& raw, RenderJob& job) {

@@ -86,6 +86,8 @@ void checkBasics(const api::RenderSettings& s) {
       throw Error("render: legendBackground components must be in [0, 1], not ", c);
   if (!(s.earlyTermination > 0))
     throw Error("render: earlyTermination ", s.earlyTermination, " must be positive");
+  if (s.integration != "exact" && s.integration != "sampled")
+    throw Error("render: integration '", s.integration, "' (use exact or sampled)");
 }
 
 }  // namespace
@@ -105,7 +107,12 @@ render::RenderSettings toRenderSettings(const api::RenderSettings& s, const Mesh
     throw Error("render: the mesh is flat (zero volume); give sampleDistance and unitDistance");
   // Here, with the whole mesh's bounds, so that every rank refuses it alike (an agreed error).
   render::checkStep(r.dt, r.camera.eye, frame.whole, "render: sampleDistance");
-  render::checkStepNotBeyondData(r.dt, frame.whole, "render: sampleDistance");
+  r.integration =
+      s.integration == "sampled" ? render::Integration::Sampled : render::Integration::ElementExact;
+  // Element-exact integration takes no samples (the step only bounds its pieces), as the command
+  // line's check.
+  if (r.integration == render::Integration::Sampled)
+    render::checkStepNotBeyondData(r.dt, frame.whole, "render: sampleDistance");
   r.earlyTermination = s.earlyTermination;
   for (const api::ClipPlane& c : s.clipPlanes)
     r.clipPlanes.push_back(
@@ -126,6 +133,7 @@ uint64_t settingsDigest(const api::RenderSettings& s) {
       .pod(s.opacityScale)
       .pod(s.unitDistance)
       .pod(s.sampleDistance)
+      .str(s.integration)
       .pod(s.earlyTermination);
   h.pod(s.clipPlanes.size());
   for (const api::ClipPlane& c : s.clipPlanes) h.pod(c.point).pod(c.normal);

@@ -148,6 +148,13 @@ std::vector<uint64_t> PreintegrationTable::deviceWords() const {
   return w;
 }
 
+uint64_t preintegrationDeviceBytes(const scene::TransferFunction& tf, int scalarBins,
+                                   int lengthBins) {
+  const uint64_t colors = uint64_t(scalarBins) * scalarBins * lengthBins;
+  const uint64_t pairs = uint64_t(cumulativeBinsFor(tf) - 1), ends = 4;
+  return (colors + pairs + ends) * sizeof(uint64_t);
+}
+
 PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int scalarBins,
                                         int lengthBins, double tauMax, int quadrature) {
   PreintegrationTable t;
@@ -199,8 +206,14 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
     double x = double(l) / (lengthBins - 1);
     lengths[l] = x * x * tauMax / t.sigmaMax;
   }
+  // lengths[l] = l^2 lengths[1], so exp(-lengths[l] cum) = g^(l^2) with g = exp(-lengths[1] cum):
+  // one exponential per quadrature point, and two products per length bin (g^((l+1)^2) =
+  // g^(l^2) g^(2l+1)), instead of an exponential per point and bin, which took 0.4 s of a first
+  // image's CPU time on two cores. The products' rounding (a few ulps after 32 bins) is far below
+  // the colours' 21 bits.
   parallelFor(int64_t(scalarBins) * scalarBins, [&](int64_t begin, int64_t end) {
-    std::vector<double> sig(quadrature), cum(quadrature);
+    std::vector<double> sig(quadrature), cum(quadrature), power(quadrature), step(quadrature),
+        g2(quadrature);
     std::vector<glm::dvec3> col(quadrature);
     for (int64_t pair = begin; pair < end; ++pair) {
       const int f = int(pair % scalarBins), b = int(pair / scalarBins);
@@ -214,15 +227,22 @@ PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int s
         cum[q] = running + 0.5 * sig[q] * du;
         running += sig[q] * du;
       }
+      for (int q = 0; q < quadrature; ++q) {
+        power[q] = 1.0;                                                   // g^(l^2), l = 0
+        step[q] = lengthBins > 1 ? std::exp(-lengths[1] * cum[q]) : 1.0;  // g^(2l+1)
+        g2[q] = step[q] * step[q];
+      }
       for (int l = 0; l < lengthBins; ++l) {
         // Weights of the colours: extinction times transmittance up to there. Their normalised sum
         // is the mean colour N; at L = 0 it is the extinction-weighted mean.
         glm::dvec3 c(0.0);
         double weight = 0.0;
         for (int q = 0; q < quadrature; ++q) {
-          double w = sig[q] * std::exp(-lengths[l] * cum[q]);
+          double w = sig[q] * power[q];
           c += w * col[q];
           weight += w;
+          power[q] *= step[q];
+          step[q] *= g2[q];
         }
         glm::dvec3 mean = weight > 0 ? c / weight : col[quadrature / 2];
         t.colors[(size_t(l) * scalarBins + b) * scalarBins + f] =

@@ -77,6 +77,11 @@ struct PreintegrationTable {
   static glm::dvec4 integrateConstant(glm::vec4 end, double L);
 };
 
+// The device buffer's bytes of buildPreintegration(tf) with these bins (deviceWords): what an
+// element-exact frame allocates beside the scene, for the out-of-memory advice.
+uint64_t preintegrationDeviceBytes(const scene::TransferFunction& tf, int scalarBins = 128,
+                                   int lengthBins = 32);
+
 PreintegrationTable buildPreintegration(const scene::TransferFunction& tf, int scalarBins = 128,
                                         int lengthBins = 32, double tauMax = 16.0,
                                         int quadrature = 128);

@@ -12,7 +12,9 @@
 namespace sm::render {
 
 // Fixed-step sampling on the global grid t = k dt (the paper's method), or element-exact
-// integration: every element crossing integrated with the pre-integrated transfer function.
+// integration: every element crossing integrated with the pre-integrated transfer function. The
+// default is element-exact: 40 to 600 times less error than the default step at about its time
+// (docs/ACCURACY.md).
 enum class Integration { Sampled, ElementExact };
 
 // Blinn-Phong shading from the scalar gradient with a headlight (off by default: it costs a
@@ -28,8 +30,8 @@ struct RenderSettings {
   int width = 512, height = 512;
   scene::Camera camera;
   scene::TransferFunction transferFunction;
-  double dt = 0.01;  // sample spacing along rays, world units
-  Integration integration = Integration::Sampled;
+  double dt = 0.01;  // sample spacing along rays, world units (element-exact: longest piece)
+  Integration integration = Integration::ElementExact;
   Shading shading;
   // Up to scene::kMaxClipPlanes planes; each keeps the half-space its normal points into.
   std::vector<scene::ClipPlane> clipPlanes;

@@ -36,8 +36,9 @@ expect "--step" "$sm" render ok.pvtu --step inf --out a.png
 # Finer than float positions along the rays resolve (sample indices would wrap): refused, not hung.
 expect "use at least" "$sm" render ok.pvtu --step 1e-10 --out a.png
 # Longer than the data: most rays would take no sample (an empty image); element-exact
-# integration takes no samples and accepts it.
-expect "--step: 100 is longer than the data's diagonal" "$sm" render ok.pvtu --step 100 --out a.png
+# integration (the default) takes no samples and accepts it.
+expect "--step: 100 is longer than the data's diagonal" "$sm" render ok.pvtu --step 100 \
+  --integration sampled --out a.png
 expect "--step: 100 is longer than the data's diagonal" "$sm" bench render --mesh ok.pvtu --step 100 \
   --no-vtk --sizes 16 --work-dir bw
 "$sm" render ok.pvtu --step 100 --integration exact --size 16x16 --out exact.png ||
@@ -54,6 +55,7 @@ expect "--cube-n: 465 makes 100544625 cells" "$sm" generate --analytic cube-hex 
 expect "ok_0.vtu: has no pieces to choose from" "$sm" info ok/ok_0.vtu --pieces 0
 usage "--meshes: must not be empty" "$sm" bench accuracy --meshes '' --work-dir acc
 expect "--meshes: empty entry in 'demo,,lander'" "$sm" bench accuracy --meshes demo,,lander --work-dir acc
+expect "--rounds: must be at least 1" "$sm" bench accuracy --rounds 0 --work-dir acc
 if [ -e acc ]; then echo "FAIL: bench accuracy made its work folder for nothing"; fails=$((fails + 1)); fi
 # A piece that is itself a .pvtu index: named when render sizes the pieces, before any reading.
 printf '<?xml version="1.0"?><VTKFile type="PUnstructuredGrid" version="1.0"><PUnstructuredGrid><Piece Source="inner.vtu"/></PUnstructuredGrid></VTKFile>' >inner.vtu

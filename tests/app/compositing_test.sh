@@ -8,11 +8,13 @@ mkdir -p "$work"
 cd "$work"
 source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 
-# One camera and transfer function for every image, so that the CPU reference can redo them.
+# One camera and transfer function for every image, so that the CPU reference can redo them, and
+# its samples (sampled integration).
 W=96 H=72 STEP=0.06 UNIT=2.5 LO=0 HI=1 CMAP=cool-to-warm
 EYE=-9,-11,6 AT=0.5,0,0 UP=0,0,1 FOVY=32
 view=(--field vortex --size ${W}x${H} --step $STEP --unit-distance $UNIT --range $LO,$HI --colormap $CMAP
-      --eye $EYE --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1)
+      --eye $EYE --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1
+      --integration sampled)
 
 case $case_name in
   demo)
@@ -72,7 +74,8 @@ PY
     # one rank holds no elements and still takes part.
     "$nested" nested.pvtu
     nview=(--size 80x64 --step 0.01 --unit-distance 0.3 --range 0,1 --colormap viridis
-           --eye 2.2,-1.6,1.4 --at 0.5,0.5,0.5 --up 0,0,1 --fovy 35 --background 0,0,0 --early-termination 1)
+           --eye 2.2,-1.6,1.4 --at 0.5,0.5,0.5 --up 0,0,1 --fovy 35 --background 0,0,0 --early-termination 1
+           --integration sampled)
     "$sm" render nested.pvtu --field vortex "${nview[@]}" --out n1.pfm
     mpi 3 "$sm" render nested.pvtu --field vortex "${nview[@]}" --stats --out n3.pfm | tee n3.log
     mpi 4 "$sm" render nested.pvtu --field vortex "${nview[@]}" --stats --out n4.pfm | tee n4.log

@@ -15,7 +15,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/script_lib.sh"
 W=64 H=48 STEP=0.02 UNIT=0.3 LO=0 HI=1 CMAP=viridis
 EYE=2.2,-1.6,1.4 AT=0.5,0.5,0.5 UP=0,0,1 FOVY=35
 tf=(--field vortex --size ${W}x${H} --step $STEP --unit-distance $UNIT --range $LO,$HI --colormap $CMAP
-    --eye $EYE --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1)
+    --eye $EYE --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1
+    --integration sampled)  # the reference's samples
 "$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 5 --out cube.pvtu >/dev/null
 
 POINTS=0.3:0,0.45:0.9,0.6:0.9,0.7:0

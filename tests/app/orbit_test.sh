@@ -17,7 +17,8 @@ eye() { python3 -c "import json,sys; print(','.join(repr(v) for v in json.load(o
 W=64 H=48 STEP=0.02 UNIT=0.3 LO=0 HI=1 CMAP=viridis
 EYE=2.2,-1.6,1.4 AT=0.5,0.5,0.5 UP=0,0,1 FOVY=35
 tf=(--field vortex --size ${W}x${H} --step $STEP --unit-distance $UNIT --range $LO,$HI --colormap $CMAP
-    --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1)
+    --at $AT --up $UP --fovy $FOVY --background 0,0,0 --early-termination 1
+    --integration sampled)  # the reference's samples
 "$sm" generate --analytic cube-tets6 --cube-n 6 --clusters 5 --steps 4 --out steps.pvtu
 
 # One step: four frames a quarter turn apart. The eye keeps its height and its distance to the

@@ -32,7 +32,7 @@ TEST(BenchFeatures, EveryVariantIsTimedAndReported) {
     EXPECT_EQ(row["frames"].size(), 1u) << row.dump();
     EXPECT_GT(row["ms"].get<double>(), 0.0) << row.dump();
   }
-  for (const char* f : {"element types", "shading", "element-exact integration", "XOR compaction",
+  for (const char* f : {"element types", "shading", "fixed-step sampling", "XOR compaction",
                         "8-bit fragments", "log scale", "exchange between ranks"})
     EXPECT_TRUE(features.count(f)) << f;
   EXPECT_LT(j["element_bytes"]["compacted"].get<double>(),

@@ -48,6 +48,10 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
                      "2",
                      "--pair-integrators",
                      "linear",
+                     "--first-image",
+                     "24x16",
+                     "--first-image-runs",
+                     "1",
                      "--work-dir",
                      dir + "/work",
                      "--json",
@@ -71,7 +75,19 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
     for (const char* ref : {"grid", "converged"})
       for (const char* k : {"rmse", "max_abs", "psnr"})
         keys.push_back(std::string("sizes.0.errors.") + img + "." + ref + "." + k);
+  for (const char* k : {"cold_seconds", "warm_seconds", "startup_cold.context_ms",
+                        "startup_warm.first_frame_ms", "startup_warm.pipelines_ms", "vtk.available"})
+    keys.push_back(std::string("first_image.") + k);
   EXPECT_EQ(missingKeys(j, keys), std::vector<std::string>{});
+  // The first image: the cold process compiles every shader; where shaders are kept as shader
+  // objects (lavapipe), the warm one takes them all from the shader cache the cold one filled.
+  const auto& first = j["first_image"];
+  EXPECT_EQ(first["width"].get<int>(), 24);
+  EXPECT_EQ(first["startup_cold"]["pipelines_from_cache_rank0"].get<uint64_t>(), 0u);
+  if (first["startup_warm"]["shader_objects"].get<bool>())
+    EXPECT_EQ(first["startup_warm"]["pipelines_from_cache_rank0"].get<uint64_t>(),
+              first["startup_warm"]["pipelines_rank0"].size());
+  EXPECT_NE(log.find("first image 24x16"), std::string::npos) << log;
   // shellmarch samples the grid the reference samples: its image is the grid reference's.
   EXPECT_LT(j["sizes"][0]["errors"]["shellmarch compacted"]["grid"]["max_abs"].get<double>(), 0.02);
   EXPECT_EQ(j["sizes"][0]["compacted_vs_plain_max_abs"].get<double>(), 0.0);
@@ -92,6 +108,8 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
   EXPECT_NE(log.find("stage-split"), std::string::npos) << log;
   if (vtkAvailable()) {
     ASSERT_TRUE(j["vtk"]["available"].get<bool>()) << j["vtk"].dump();
+    EXPECT_GT(first["vtk"]["seconds"].get<double>(), 0.0) << first.dump();
+    EXPECT_GT(first["vtk_over_warm"].get<double>(), 0.0) << first.dump();
     EXPECT_EQ(missingKeys(j, {"vtk.sizes.0.integrators.0.warm_ms",
                               "vtk.sizes.0.integrators.0.cold_first_frame_ms",
                               "sizes.0.errors.VTK linear.converged.rmse", "goals.0.speedup",

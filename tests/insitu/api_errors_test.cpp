@@ -228,9 +228,16 @@ TEST_F(InsituErrors, Settings) {
   // Finer than float positions along the rays resolve (the sample index could wrap).
   expectSettingError([](auto& s) { s.sampleDistance = 1e-12; },
                      "render: sampleDistance: 1e-12 is finer than float distances");
-  // Longer than the data: most rays would take no sample and the image would be empty.
-  expectSettingError([](auto& s) { s.sampleDistance = 1e6; },
-                     "render: sampleDistance: 1e+06 is longer than the data's diagonal");
+  // Longer than the data: most rays would take no sample and the image would be empty (sampled
+  // integration: element-exact takes no samples).
+  expectSettingError(
+      [](auto& s) {
+        s.integration = "sampled";
+        s.sampleDistance = 1e6;
+      },
+      "render: sampleDistance: 1e+06 is longer than the data's diagonal");
+  expectSettingError([](auto& s) { s.integration = "linear"; },
+                     "render: integration 'linear' (use exact or sampled)");
 }
 
 // Options::tracer: a name it does not know is refused; each tracer the device offers renders the

@@ -192,27 +192,29 @@ oom_scene)
   [ ! -e "$dir/a.png" ] || fail "an image was written"
   need=$(sed -n 's/.*need about \([0-9.]*\) \([KMG]\)iB.*/\1\2/p' "$dir/small.log" | head -1)
   [ -n "$need" ] || fail "the message gives no size"
-  # What it says the scene needs, plus 2 MiB for the compositor's buffers of a small image.
-  budget=$(python3 -c "import sys; v='$need'; u={'K':1<<10,'M':1<<20,'G':1<<30}[v[-1]]; print(int(float(v[:-1])*u) + (2<<20))")
+  # What it says the scene needs, plus 2 MiB for the compositor's buffers of a small image and
+  # 4 MiB for the pre-integrated transfer function of element-exact frames (the default).
+  budget=$(python3 -c "import sys; v='$need'; u={'K':1<<10,'M':1<<20,'G':1<<30}[v[-1]]; print(int(float(v[:-1])*u) + (6<<20))")
   SHELLMARCH_DEVICE_MEMORY_LIMIT=$budget run enough "$shellmarch" "${render_args[@]}" --out "$dir/a.png"
-  [ $status -eq 0 ] || fail "the scene's stated need ($need + 2 MiB) was not enough"
+  [ $status -eq 0 ] || fail "the scene's stated need ($need + 6 MiB) was not enough"
   pass "needs about $need"
   ;;
 oom_lists_fixed)
-  # Fixed lists of K = 16 slots on 512x512 pixels (100 MiB) beside a scene of 0.2 MiB in a
-  # 24 MiB budget: the message suggests a K and a size that fit, and both do.
+  # Fixed lists of K = 16 slots on 512x512 pixels (100 MiB) beside a scene of 0.2 MiB and the
+  # 4 MiB pre-integrated transfer function (element-exact frames, the default) in a 28 MiB budget:
+  # the message suggests a K and a size that fit, and both do.
   args=("${big_args[@]}" --lists drop)
-  SHELLMARCH_DEVICE_MEMORY_LIMIT=24M run small "$shellmarch" "${args[@]}" --size 512x512 --k 16 \
+  SHELLMARCH_DEVICE_MEMORY_LIMIT=28M run small "$shellmarch" "${args[@]}" --size 512x512 --k 16 \
     --out "$dir/a.png"
   [ $status -eq 1 ] || fail "expected exit status 1, got $status"
   expect_in small "out of device memory for fragment lists"
   k=$(sed -n 's/.*what would fit: --k \([0-9]*\).*/\1/p' "$dir/small.log")
   size=$(sed -n 's/.*--size \([0-9]*x[0-9]*\).*/\1/p' "$dir/small.log" | tail -1)
   [ -n "$k" ] && [ -n "$size" ] || fail "no --k and --size suggested"
-  SHELLMARCH_DEVICE_MEMORY_LIMIT=24M run fit_k "$shellmarch" "${args[@]}" --size 512x512 --k "$k" \
+  SHELLMARCH_DEVICE_MEMORY_LIMIT=28M run fit_k "$shellmarch" "${args[@]}" --size 512x512 --k "$k" \
     --out "$dir/k.png"
   [ $status -eq 0 ] || fail "the suggested --k $k does not fit"
-  SHELLMARCH_DEVICE_MEMORY_LIMIT=24M run fit_size "$shellmarch" "${args[@]}" --k 16 --size "$size" \
+  SHELLMARCH_DEVICE_MEMORY_LIMIT=28M run fit_size "$shellmarch" "${args[@]}" --k 16 --size "$size" \
     --out "$dir/s.png"
   [ $status -eq 0 ] || fail "the suggested --size $size does not fit"
   pass "suggested --k $k, --size $size"

@@ -27,8 +27,11 @@ namespace {
 
 using ref::test::Split;
 
+// Sampled: the rays are compared with the reference's samples on the same grid, and some tests
+// count samples (the element-exact test asks for its integration).
 RenderSettings hardSettings(double lo, double hi, double size) {
   RenderSettings s;
+  s.integration = Integration::Sampled;
   s.transferFunction = scene::makeTransferFunction("cool-to-warm");
   s.transferFunction.lo = lo;
   s.transferFunction.hi = hi;

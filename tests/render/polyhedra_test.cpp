@@ -108,6 +108,7 @@ scene::Image renderConforming(const mesh::UnstructuredMesh& m, double hi, const 
   s.transferFunction.hi = hi;
   s.transferFunction.unitDistance = m.bounds().diagonal() / 4;
   s.dt = 0.05;
+  s.integration = Integration::Sampled;  // the grid reference's samples
   s.earlyTermination = 2.0;
   s.keepSegments = true;
   auto gpu = test::renderOnGpu(m, "f", s);

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/check.h"
 #include "prep/prepare.h"
 #include "prep/vertex_order.h"
 #include "ref/reference_renderer.h"
@@ -79,6 +80,9 @@ RayComparison compareRays(const mesh::UnstructuredMesh& original,
                           const std::vector<float>& inputValues,
                           const render::RenderSettings& settings,
                           const std::vector<render::WorldRay>& worldRays) {
+  // The reference's samples (Grid mode) are sampled integration's: the test asks for that.
+  SM_CHECK_MSG(settings.integration == render::Integration::Sampled,
+               "compareRays: the grid reference is sampled integration's");
   // Compare on the geometry the GPU actually sees: positions and rays as float offsets from the
   // rebasing origin (directions as float). Otherwise a ray that lies exactly in a face plane in
   // float lies just inside or outside it in double, and the two renderers get different rays.

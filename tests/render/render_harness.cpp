@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "common/check.h"
 #include "prep/prepare.h"
 #include "prep/vertex_order.h"
 #include "ref/reference_renderer.h"
@@ -189,6 +190,9 @@ scene::Image renderReference(const mesh::UnstructuredMesh& input,
       prep::globalVertexOrder(input.points, prep::makeGlobalFrame(input.bounds()));
   std::vector<float> values(inputValues.size());
   for (size_t i = 0; i < order.size(); ++i) values[i] = inputValues[order[i]];
+  // Grid mode takes the samples of sampled integration: a test comparing with it asks for that.
+  SM_CHECK_MSG(s.integration == render::Integration::Sampled,
+               "renderReference: the grid reference is sampled integration's");
   ref::ReferenceRenderer r(mesh);
   ref::RenderSettings rs;
   rs.dt = s.dt;

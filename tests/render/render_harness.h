@@ -70,7 +70,8 @@ void rayBox(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double& t0
 // reference must see the same numbering to triangulate warped quads as the GPU does.
 mesh::UnstructuredMesh inGlobalVertexOrder(const mesh::UnstructuredMesh& mesh);
 
-// The CPU reference's image of the same frame (Grid mode: the same samples as the GPU).
+// The CPU reference's image of the same frame (Grid mode: the same samples as the GPU, whose
+// settings must ask for sampled integration).
 scene::Image renderReference(const mesh::UnstructuredMesh& mesh, const std::vector<float>& values,
                              const render::RenderSettings& settings);
 

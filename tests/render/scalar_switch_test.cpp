@@ -48,6 +48,8 @@ RenderSettings settings() {
   s.transferFunction.lo = 0.0;
   s.transferFunction.hi = 2.0;
   s.dt = 0.02;
+  // The sampled scheme's opacities (below).
+  s.integration = Integration::Sampled;
   s.earlyTermination = 2.0;  // off: the whole integral
   return s;
 }

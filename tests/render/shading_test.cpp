@@ -82,6 +82,7 @@ TEST(Shading, TrilinearGradientInHexahedra) {
   s.transferFunction.hi = 1;
   s.transferFunction.unitDistance = 0.4;
   s.dt = 0.0071;
+  s.integration = Integration::Sampled;
   auto mesh = test::hexGrid(4);
   std::vector<float> f;
   for (const auto& p : mesh.points) f.push_back(float(p.x * p.y * p.z));

@@ -36,6 +36,7 @@ void expectMatchesReference(const std::string& file) {
   s.transferFunction.hi = hi > lo ? hi : lo + 1;
   s.transferFunction.unitDistance = m.bounds().diagonal() / 8;
   s.dt = defaultStep(elementSizeSum(m).mean(), m.bounds());
+  s.integration = Integration::Sampled;  // the grid reference's samples
   s.earlyTermination = 2.0;
   auto gpu = test::renderOnGpu(m, values, s);
   EXPECT_EQ(gpu.validationErrors, 0u) << file;

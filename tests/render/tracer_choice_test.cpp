@@ -16,8 +16,11 @@
 namespace sm::render {
 namespace {
 
+// Sampled, so that the cases below cover both integrations (one asks for element-exact).
 RenderSettings wedgeView() {
-  return test::cubeView(40, 30);
+  RenderSettings s = test::cubeView(40, 30);
+  s.integration = Integration::Sampled;
+  return s;
 }
 
 struct Scene {

@@ -37,6 +37,7 @@ RenderSettings slabSettings(double earlyTermination) {
   s.transferFunction.hi = 2;
   s.transferFunction.unitDistance = 0.4;
   s.dt = 0.017;
+  s.integration = Integration::Sampled;  // the grid reference's samples
   s.earlyTermination = earlyTermination;
   s.keepSegments = true;  // these tests compare the segment lists too
   s.camera.eye = {0.45, 0.4, -2.5};

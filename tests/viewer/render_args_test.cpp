@@ -46,12 +46,15 @@ TEST(RenderArgs, CarryTheStateExactlyAndOnlyTheFlagsThatApply) {
   args = renderArgs(s, 64, 48, {f, map, tf, points, {p}, true});
   EXPECT_TRUE(has(args, "--legend"));
   EXPECT_TRUE(has(args, "--log-scale"));
+  EXPECT_FALSE(has(args, "--integration=sampled"));  // element-exact, the default, says nothing
   EXPECT_EQ(std::count_if(args.begin(), args.end(),
                           [](const std::string& a) { return a.rfind("--opacity=", 0) == 0; }),
             1);
   EXPECT_EQ(std::count_if(args.begin(), args.end(),
                           [](const std::string& a) { return a.rfind("--clip=", 0) == 0; }),
             1);
+  args = renderArgs(s, 64, 48, {f, map, tf, none, noPlanes, false, true});
+  EXPECT_TRUE(has(args, "--integration=sampled"));
 }
 
 TEST(ScreenImage, ScreenshotsAreNumberedBeforeTheExtension) {

@@ -78,6 +78,7 @@ struct PeerRun {
   bool ok = false;
   std::string error;  // why not, for the report (missing Python or VTK, a crash, ...)
   nlohmann::json result;
+  double seconds = 0;  // the whole process, start to exit
 };
 struct PeerOptions {
   std::string python;  // interpreter with VTK
@@ -91,5 +92,16 @@ PeerRun runPeer(const PeerOptions& options);
 // /usr/bin/python3 when it exists (Debian's python3-vtk9 lives there, not in a pyenv), else
 // python3.
 std::string defaultPython();
+
+// argv run with `env` ("NAME=value") added to this process's environment, stdout and stderr to
+// logPath: its exit status (-1: it could not start), wall-clock seconds and, on failure, the
+// log's tail.
+struct ProcessResult {
+  int status = -1;
+  double seconds = 0;
+  std::string error;
+};
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector<std::string>& env,
+                         const std::string& logPath);
 
 }  // namespace sm::app::bench

@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -92,8 +94,10 @@ std::string scriptPath(const std::string& file) {
               SHELLMARCH_BENCH_SCRIPT_DIR, ")");
 }
 
-// Exit status of argv run with stdout and stderr sent to logPath; -1 if it could not start.
-int spawnLogged(const std::vector<std::string>& argv, const std::string& logPath) {
+// Exit status of argv run with stdout and stderr sent to logPath and `env` ("NAME=value") added
+// to the environment; -1 if it could not start.
+int spawnLogged(const std::vector<std::string>& argv, const std::string& logPath,
+                const std::vector<std::string>& env = {}) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
@@ -102,9 +106,19 @@ int spawnLogged(const std::vector<std::string>& argv, const std::string& logPath
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  std::vector<char*> envp;
+  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  for (char** e = environ; *e; ++e) {
+    const char* eq = std::strchr(*e, '=');
+    const size_t n = eq ? size_t(eq - *e) + 1 : std::strlen(*e);
+    if (std::none_of(env.begin(), env.end(),
+                     [&](const std::string& x) { return x.compare(0, n, *e, n) == 0; }))
+      envp.push_back(*e);
+  }
+  envp.push_back(nullptr);
   std::fflush(nullptr);
   pid_t pid = 0;
-  int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int status = 0;
@@ -183,6 +197,17 @@ std::string generatedMesh(const std::string& workDir, const gen::CfdMeshOptions&
   return path;
 }
 
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector<std::string>& env,
+                         const std::string& logPath) {
+  const auto start = std::chrono::steady_clock::now();
+  ProcessResult r;
+  r.status = spawnLogged(argv, logPath, env);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (r.status != 0)
+    r.error = r.status < 0 ? concat("could not start ", argv[0]) : logTail(logPath);
+  return r;
+}
+
 PeerRun runPeer(const PeerOptions& o) {
   PeerRun run;
   std::string script;
@@ -201,7 +226,9 @@ PeerRun runPeer(const PeerOptions& o) {
   argv.push_back("--json");
   argv.push_back(o.jsonOut);
   std::remove(o.jsonOut.c_str());
+  const auto start = std::chrono::steady_clock::now();
   int rc = spawnLogged(argv, o.logPath);
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (rc != 0) {
     run.error = rc < 0 ? concat("could not start ", argv[0])
                        : concat(o.script, " exited with status ", rc, ": ", logTail(o.logPath));

@@ -34,6 +34,11 @@ struct RenderArgs {
   std::string workDir = "out/bench", json, device, python = defaultPython();
   std::string tracer = "auto";
   bool noVtk = false;
+  // The first-image block (first_image.cpp): its size ("none": skipped), rounds, and whether it
+  // is all that runs.
+  std::string firstImage = "256x256";
+  int firstImageRuns = 3;
+  bool onlyFirstImage = false;
 };
 
 // Everything measured once per run: the mesh on the host (for the reference) and on the device,
@@ -58,6 +63,15 @@ std::vector<std::string> splitList(const std::string& s);
 // {"available": false, "reason": ...} without VTK or with --no-vtk.
 nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
                       const nlohmann::json& sizes);
+
+// VTK's whole process (Python start, import, read, one frame, PNG; under xvfb-run where there is
+// no display) for one image of `size` (camera included), `runs` times: the median seconds, or
+// {"available": false, ...}.
+nlohmann::json vtkFirstImage(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+                             const nlohmann::json& size, int runs);
+
+// The camera of `s` as VTK's job and the report take it.
+nlohmann::json cameraJson(const scene::Camera& c);
 
 // Paired rounds (paired_rounds.h) of the compacted scene's equal-error runs against VTK, into
 // report.

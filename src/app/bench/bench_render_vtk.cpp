@@ -57,6 +57,25 @@ PeerRun vtkRun(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
 
 }  // namespace
 
+nlohmann::json vtkFirstImage(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
+                             const nlohmann::json& size, int runs) {
+  if (a.noVtk) return {{"available", false}, {"reason", "--no-vtk"}};
+  RenderArgs once = a;
+  once.vtkRuns = 0;
+  const std::string integrator = splitList(a.pairIntegrators).front();
+  std::vector<double> seconds;
+  for (int i = 0; i < runs; ++i) {
+    PeerRun run = vtkRun(once, sc, mesh, nlohmann::json::array({size}), {integrator},
+                         joinPath(a.workDir, "first-image"), "vtk_first_image");
+    if (!run.ok) return {{"available", false}, {"reason", run.error}};
+    seconds.push_back(run.seconds);
+  }
+  return {{"available", true},
+          {"integrator", integrator},
+          {"seconds", median(seconds)},
+          {"seconds_all", seconds}};
+}
+
 nlohmann::json runVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
                       const nlohmann::json& sizes) {
   if (a.noVtk) return {{"available", false}, {"reason", "--no-vtk"}};

@@ -39,6 +39,7 @@ std::vector<std::string> renderArgs(const ViewState& state, int width, int heigh
                                    "--step=" + exact(state.dt),
                                    "--unit-distance=" + exact(look.transferFunction.unitDistance)};
   if (look.legend) args.push_back("--legend");
+  if (look.sampled) args.push_back("--integration=sampled");
   if (look.transferFunction.scale == scene::ScalarScale::Log) args.push_back("--log-scale");
   if (!look.opacityPoints.empty())
     args.push_back("--opacity=" + app::formatOpacityPoints(look.opacityPoints));

@@ -16,7 +16,7 @@ namespace sm::view {
 // What the frame was drawn with, besides the state: the field shown, the colour map's name, the
 // transfer function (its scale and unit distance), the opacity points when they applied to this
 // frame's field (else empty), the planes it was clipped by (the view's --clip planes and the cut),
-// and whether the legend was drawn.
+// whether the legend was drawn, and the integration (--integration sampled when not the default).
 struct FrameLook {
   const FieldInfo& field;
   const std::string& colormap;
@@ -24,6 +24,7 @@ struct FrameLook {
   const std::vector<scene::OpacityPoint>& opacityPoints;
   const std::vector<scene::ClipPlane>& clipPlanes;
   bool legend = false;
+  bool sampled = false;
 };
 
 // Every number exact (%.17g), so that render draws the same frame bit for bit.

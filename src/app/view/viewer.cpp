@@ -374,7 +374,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   static const std::vector<scene::OpacityPoint> kNone;
   const std::vector<scene::OpacityPoint>& points = state_.field == 0 ? job_.opacityPoints : kNone;
   j["render_args"] = renderArgs(state_, lastWidth_, lastHeight_,
-                                {f, colormap, tf, points, scene_->settings().clipPlanes, legend_});
+                                {f, colormap, tf, points, scene_->settings().clipPlanes, legend_,
+                                 scene_->settings().integration == render::Integration::Sampled});
   j["legend"] = legend_;
   j["cut"] =
       state_.cut
