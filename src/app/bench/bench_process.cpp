@@ -226,12 +226,11 @@ PeerRun runPeer(const PeerOptions& o) {
   argv.push_back("--json");
   argv.push_back(o.jsonOut);
   std::remove(o.jsonOut.c_str());
-  const auto start = std::chrono::steady_clock::now();
-  int rc = spawnLogged(argv, o.logPath);
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (rc != 0) {
-    run.error = rc < 0 ? concat("could not start ", argv[0])
-                       : concat(o.script, " exited with status ", rc, ": ", logTail(o.logPath));
+  const ProcessResult p = runProcess(argv, {}, o.logPath);
+  run.seconds = p.seconds;
+  if (p.status != 0) {
+    run.error =
+        p.status < 0 ? p.error : concat(o.script, " exited with status ", p.status, ": ", p.error);
     return run;
   }
   try {
