@@ -24,14 +24,14 @@ packages=(
   libvulkan-dev vulkan-tools glslang-tools glslc spirv-tools
   libopenmpi-dev openmpi-bin
   libglfw3-dev libglm-dev libgtest-dev googletest
-  libgmsh-dev gmsh libmetis-dev
+  libgmsh-dev gmsh libmetis-dev libcgns-dev libexodusii-dev
   libpugixml-dev nlohmann-json3-dev libcli11-dev libstb-dev zlib1g-dev liblz4-dev liblzma-dev libpng-dev
 )
 test_packages=(
   vulkan-validationlayers
   clang libclang-rt-14-dev
   xvfb xauth
-  python3 python3-vtk9 python3-numpy python3-matplotlib
+  python3 python3-vtk9 python3-numpy python3-matplotlib python3-meshio
 )
 if [ $build_only = 0 ]; then packages+=("${test_packages[@]}"); fi
 

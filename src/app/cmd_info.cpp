@@ -46,12 +46,13 @@ nlohmann::json rangeJson(const mesh::Range& r) {
 
 // Components of the array each field is read from (by name): 1 for a scalar, N for a vector
 // shown as its magnitude, 0 for one component asked for ("v[1]"). Known from the XML headers as
-// readMesh planned its reads; not for legacy .vtk and .ugrid files, which would be parsed again.
+// readMesh planned its reads (or the format's headers); not for legacy .vtk and .ugrid files,
+// which would be parsed again.
 using Components = std::map<std::string, uint32_t>;
 
 Components componentsOf(const InfoOptions& o, const io::ReadOptions& read) {
   Components out;
-  if (!io::readsStepsAlone(o.file)) return out;
+  if (!io::listsFieldsFromHeaders(o.file)) return out;
   for (const io::FieldStepCount& f : io::listFieldSteps(o.file, read)) out[f.name] = f.components;
   return out;
 }

@@ -10,6 +10,7 @@
 #include "io/array_plan.h"
 #include "io/mesh_io.h"
 #include "io/numeric_array.h"
+#include "io/pieced_readers.h"
 #include "io/readers.h"
 #include "io/series.h"
 #include "io/vtu_arrays.h"
@@ -271,6 +272,8 @@ std::vector<FieldStepCount> listFieldSteps(const std::string& path, const ReadOp
   if (ext == ".vtu") return vtuFieldSteps(path, options);
   if (isPieceIndex(path)) return pvtuFieldSteps(path, options);
   if (isSeries(path)) return seriesFieldSteps(path, options);
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(path))
+    return piecedFieldSteps(path, piecedLayout(*f, path), options);
   ReadOptions o = options;
   o.step.reset();
   o.loadFields = true;
@@ -287,6 +290,8 @@ std::vector<float> readFieldStep(const std::string& path, const std::string& fie
     values = pvtuFieldStep(path, field, step, options, Data::Points);
   else if (isSeries(path))
     return seriesFieldStep(path, field, step, options, pointMap);
+  else if (const std::optional<PiecedFormat> f = piecedFormatOf(path))
+    values = piecedFieldStep(*f, path, field, step, options);
   else
     return wholeReadFieldStep(path, field, step, options, pointMap);
   return mapValues(path, std::move(values), pointMap, Data::Points);
@@ -310,6 +315,12 @@ std::vector<float> readCellFieldStep(const std::string& path, const std::string&
 }
 
 std::vector<std::string> listCellData(const std::string& path, const ReadOptions& options) {
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(path)) {
+    std::vector<std::string> names;
+    for (const FieldStepCount& c : piecedLayout(*f, path).fields)
+      if (c.cellData) names.push_back(c.name);
+    return names;
+  }
   const std::optional<FirstPieceArrays> arrays = firstPieceArrays(path, options);
   std::vector<std::string> names;
   if (arrays)
@@ -320,6 +331,11 @@ std::vector<std::string> listCellData(const std::string& path, const ReadOptions
 
 bool asksForCellData(const std::string& path, const ReadOptions& options) {
   if (options.fields.empty() || !options.loadFields) return false;
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(path)) {
+    for (const FieldStepCount& c : piecedFieldSteps(path, piecedLayout(*f, path), options))
+      if (c.cellData) return true;
+    return false;
+  }
   const std::optional<FirstPieceArrays> arrays = firstPieceArrays(path, options);
   return arrays && splitFieldRequests(arrays->points, arrays->cells, options).cells.loadFields;
 }

@@ -1,17 +1,19 @@
 #include "io/mesh_io.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"
+#include "io/pieced_readers.h"
 #include "io/readers.h"
 #include "io/series.h"
 
 namespace sm::io {
 namespace {
 
-enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid, Series };
+enum class Format { Vtu, Pvtu, LegacyVtk, Ugrid, Series, Pieced };
 
 Format formatOf(const std::string& path) {
   const std::string ext = fileExtension(path);
@@ -20,9 +22,11 @@ Format formatOf(const std::string& path) {
   if (ext == ".vtk") return Format::LegacyVtk;
   if (ext == ".ugrid") return Format::Ugrid;
   if (isSeries(path)) return Format::Series;
+  if (piecedFormatOf(path)) return Format::Pieced;
   throw Error(path, ": unknown mesh format '", ext,
-              "' (shellmarch reads .vtu, .pvtu, .vtm, legacy .vtk and .ugrid files, and time "
-              "series of them as .pvd or .series files)");
+              "' (shellmarch reads .vtu, .pvtu, .vtm, legacy .vtk, .ugrid, CGNS (.cgns), Exodus II "
+              "(.e, .exo), SU2 (.su2) and Gmsh (.msh) files, and time series of VTK files as .pvd "
+              "or .series files)");
 }
 
 // Ignoring a choice of pieces would load the whole file where the caller asked for part of it.
@@ -66,7 +70,8 @@ mesh::UnstructuredMesh withCellDataOnPoints(mesh::UnstructuredMesh m, bool avera
 
 mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& options) {
   const Format format = formatOf(path);
-  if (format != Format::Pvtu && format != Format::Series) checkNoPieces(path, options);
+  if (format != Format::Pvtu && format != Format::Series && format != Format::Pieced)
+    checkNoPieces(path, options);
   // One step of a file of many (a stream's first) touches a small part of it: its pages are mapped
   // as they are read instead of all up front.
   const OpenFile open = options.step ? &FileBytes::openLazily : &FileBytes::open;
@@ -81,6 +86,8 @@ mesh::UnstructuredMesh readAnyMesh(const std::string& path, const ReadOptions& o
       return readUgrid(FileBytes::open(path), path, options, true);
     case Format::Series:
       return readSeries(path, options, &readAnyMesh);
+    case Format::Pieced:
+      return readPieced(*piecedFormatOf(path), path, options);
   }
   return {};
 }
@@ -100,7 +107,10 @@ mesh::UnstructuredMesh readMesh(const std::string& path, const ReadOptions& opti
 mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& name,
                                           const ReadOptions& options) {
   const Format format = formatOf(name);
-  if (format != Format::Pvtu) checkNoPieces(name, options);  // a .pvtu is refused below
+  const std::optional<PiecedFormat> pieced = piecedFormatOf(name);
+  // A .pvtu is refused below; the text formats with pieces choose them.
+  if (format != Format::Pvtu && pieced != PiecedFormat::Su2 && pieced != PiecedFormat::Gmsh)
+    checkNoPieces(name, options);
   switch (format) {
     case Format::Vtu:
       return withCellDataOnPoints(readVtu(FileBytes::copyOf(bytes), name, options),
@@ -114,17 +124,31 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
       return readUgrid(FileBytes::copyOf(bytes), name, options, false);
     case Format::Series:
       throw Error(name, ": a series names its steps by file; read it with readMesh");
+    case Format::Pieced:
+      if (pieced == PiecedFormat::Su2)
+        return withCellDataOnPoints(readSu2(FileBytes::copyOf(bytes), name, options),
+                                    options.cellDataOnPoints);
+      if (pieced == PiecedFormat::Gmsh)
+        return withCellDataOnPoints(readGmsh(FileBytes::copyOf(bytes), name, options),
+                                    options.cellDataOnPoints);
+      throw Error(name, ": ", piecedFormatDescription(*pieced),
+                  " files are read through their library from a file; read it with readMesh");
   }
   return {};
 }
 
 int countPieces(const std::string& path) {
   const std::string file = firstFile(path);
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(file))
+    return static_cast<int>(piecedLayout(*f, file).pieces.size());
   return formatOf(file) == Format::Pvtu ? countPvtuPieces(file) : 1;
 }
 
 bool readsByPiece(const std::string& path) {
-  return formatOf(firstFile(path)) == Format::Pvtu;
+  const std::string file = firstFile(path);
+  // One piece is read whole, so that it can be split among ranks after reading.
+  if (piecedFormatOf(file)) return countPieces(file) > 1;
+  return formatOf(file) == Format::Pvtu;
 }
 
 bool readsStepsAlone(const std::string& path) {
@@ -132,19 +156,33 @@ bool readsStepsAlone(const std::string& path) {
   return f == Format::Vtu || f == Format::Pvtu;
 }
 
+bool listsFieldsFromHeaders(const std::string& path) {
+  return readsStepsAlone(path) || piecedFormatOf(firstFile(path));
+}
+
 std::vector<std::string> pieceFiles(const std::string& path) {
   const std::string file = firstFile(path);
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(file))
+    return piecedLayout(*f, file).pieces;
   return formatOf(file) == Format::Pvtu ? pvtuPieceFiles(file) : std::vector<std::string>{file};
 }
 
 std::vector<uint64_t> pieceCellCounts(const std::string& path) {
   const std::string file = firstFile(path);
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(file))
+    return piecedLayout(*f, file).pieceCells;
   if (formatOf(file) != Format::Pvtu)
     throw FileError(path, "has no pieces (only a .pvtu, or a series of them, has pieces)");
   return pvtuPieceCellCounts(file);
 }
 
 std::vector<std::string> meshFiles(const std::string& path) {
+  if (const std::optional<PiecedFormat> f = piecedFormatOf(path)) {
+    std::vector<std::string> files = piecedLayout(*f, path).files;
+    if (std::find(files.begin(), files.end(), path) == files.end())
+      files.insert(files.begin(), path);
+    return files;
+  }
   std::vector<std::string> files{path};
   if (formatOf(path) == Format::Series) {
     for (const SeriesStep& s : readSeriesIndex(path))
@@ -166,6 +204,8 @@ std::string formatDescription(const std::string& path) {
       return "legacy VTK unstructured grid (.vtk)";
     case Format::Ugrid:
       return "AFLR3/FUN3D UGRID (.ugrid)";
+    case Format::Pieced:
+      return piecedFormatDescription(*piecedFormatOf(path));
     case Format::Series: {
       const std::vector<SeriesStep> steps = readSeriesIndex(path);
       return concat("time series (", fileExtension(path) == ".pvd" ? "ParaView .pvd" : ".series",

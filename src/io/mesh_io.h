@@ -74,6 +74,9 @@ bool readsByPiece(const std::string& path);
 // True when readFieldStep reads a step without reading the whole file again (.vtu, .pvtu, and
 // series of them): what streaming a time series needs.
 bool readsStepsAlone(const std::string& path);
+// True when listFieldSteps knows the fields from headers, without reading the file whole (.vtu,
+// .pvtu, series of them, CGNS, Exodus II, SU2 and Gmsh files).
+bool listsFieldsFromHeaders(const std::string& path);
 // The files of the pieces of a .pvtu (or of a series' first step), for messages; else the file.
 std::vector<std::string> pieceFiles(const std::string& path);
 
