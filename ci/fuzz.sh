@@ -18,7 +18,7 @@ jobs=${SHELLMARCH_JOBS:-$(nproc)}
 build=${SHELLMARCH_FUZZ_BUILD:-build-fuzz}
 shared=${SHELLMARCH_SHARED_DIR:-$root/../shared}
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vtu pvtu legacy_vtk ugrid cache colormap)
+[ ${#targets[@]} -gt 0 ] || targets=(vtu pvtu legacy_vtk ugrid cache colormap su2 gmsh cgns exodus)
 
 mkdir -p "$build"
 times=$build/fuzz-times.txt
@@ -49,7 +49,21 @@ for mesh in tests/io/data/mesh_ascii.vtu tests/io/data/weld.pvtu; do
   "$build/tests/fuzz/fuzz_make_cache_seed" "$mesh" "$out"
 done
 
+# The solvers' formats, written by their own libraries (tests/formats writers).
+formats=$build/format-files
+rm -rf "$formats"
+# (libgmsh keeps allocations for the process's life: the seed writer is no fuzz target.)
+for f in cgns exodus gmsh; do
+  ASAN_OPTIONS=detect_leaks=0 "$build/tests/fuzz/fuzz_make_format_seeds" $f "$formats/$f" >/dev/null
+done
+for t in cgns exodus su2 gmsh; do mkdir -p "$seeds/$t"; done
+find "$formats" -name '*.cgns' -exec cp {} "$seeds/cgns/" \;
+find "$formats/exodus" -type f -exec cp {} "$seeds/exodus/" \;
+find "$formats" -name '*.su2' -exec cp {} "$seeds/su2/" \;
+find "$formats" -name '*.msh' -exec cp {} "$seeds/gmsh/" \;
+
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:allocator_may_return_null=0}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/ci/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 summary=$build/fuzz-summary.tsv
 printf 'target\tseconds\texecutions\texec_per_s\tcorpus\tcoverage\tresult\n' >"$summary"

@@ -2,7 +2,11 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
+
+#include <unistd.h>
 
 #include "common/error.h"
 #include "common/hash.h"
@@ -89,6 +93,35 @@ std::string readMeshInput(std::span<const uint8_t> bytes, const std::string& nam
   }
   checkMesh(m);
   return prepare(std::move(m), name);
+}
+
+// A format read through a library that opens files (CGNS, Exodus II): the bytes become a file of
+// this process's own, read by the ordinary entry point and removed.
+std::string libraryFileInput(std::span<const uint8_t> bytes, const std::string& extension) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / concat("shellmarch-fuzz-", ::getpid(), extension))
+          .string();
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  }
+  struct Remove {
+    std::string path;
+    ~Remove() { std::filesystem::remove(path); }
+  } remove{path};
+  io::ReadOptions options;
+  options.threads = 1;
+  mesh::UnstructuredMesh m;
+  try {
+    m = io::readMesh(path, options);
+  } catch (const FileError& e) {
+    checkMessage(e.what(), path);
+    return e.what();
+  } catch (const std::exception& e) {
+    bug(std::string("not a FileError: ") + e.what());
+  }
+  checkMesh(m);
+  return prepare(std::move(m), path);
 }
 
 std::string pvtuInput(std::span<const uint8_t> bytes) {
@@ -179,8 +212,8 @@ std::string colormapInput(std::span<const uint8_t> bytes) {
 }  // namespace
 
 const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names = {"vtu",   "pvtu",  "legacy_vtk",
-                                                 "ugrid", "cache", "colormap"};
+  static const std::vector<std::string> names = {
+      "vtu", "pvtu", "legacy_vtk", "ugrid", "cache", "colormap", "su2", "gmsh", "cgns", "exodus"};
   return names;
 }
 
@@ -236,6 +269,14 @@ std::string runInput(Target target, std::span<const uint8_t> bytes) {
       return cacheInput(bytes);
     case Target::Colormap:
       return colormapInput(bytes);
+    case Target::Su2:
+      return readMeshInput(bytes, "fuzz.su2");
+    case Target::Gmsh:
+      return readMeshInput(bytes, "fuzz.msh");
+    case Target::Cgns:
+      return libraryFileInput(bytes, ".cgns");
+    case Target::Exodus:
+      return libraryFileInput(bytes, ".exo");
   }
   return "";
 }

@@ -24,10 +24,10 @@ class FuzzBug : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
-enum class Target { Vtu, Pvtu, LegacyVtk, Ugrid, Cache, Colormap };
+enum class Target { Vtu, Pvtu, LegacyVtk, Ugrid, Cache, Colormap, Su2, Gmsh, Cgns, Exodus };
 
 // Target names as used for corpus and regression folders: "vtu", "pvtu", "legacy_vtk", "ugrid",
-// "cache", "colormap".
+// "cache", "colormap", "su2", "gmsh", "cgns", "exodus".
 const std::vector<std::string>& targetNames();
 Target targetByName(const std::string& name);  // throws std::invalid_argument
 
@@ -42,6 +42,9 @@ inline constexpr std::string_view kPieceSeparator = "\n===piece===\n";
 // when given, receives every path the reader asked for, the index first.
 mesh::UnstructuredMesh readPvtuBundle(std::span<const uint8_t> bytes,
                                       std::vector<std::string>* opened = nullptr);
+
+// CGNS and Exodus II inputs are read through their libraries, which open files: the input is
+// written to a file of this process's own in the temporary folder and read from there.
 
 // .ugrid inputs: the first byte picks the variant (ascii, b8, lb8, b8l, ...), the rest is the file.
 const std::vector<std::string>& ugridVariants();  // "" for ascii, then the binary suffixes
