@@ -1,17 +1,22 @@
 // shellmarch bench prep [--elements 1000000,5000000 | --mesh FILE ...] [--threads 1] [--runs 3]
-//                       [--work-dir out/bench] [--json FILE] [--python PY] [--no-vtk]
+//                       [--formats cgns,exodus] [--work-dir out/bench] [--json FILE]
+//                       [--python PY] [--no-vtk]
 // Load and preparation throughput per stage and peak memory, with VTK's read and surface
-// extraction of the same files in the same run (docs/BENCHMARKS.md).
+// extraction of the same files in the same run (docs/BENCHMARKS.md). --formats also reads each
+// mesh as CGNS and Exodus II copies written by those formats' libraries, against its .pvtu.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/bench/bench_common.h"
 #include "app/bench/prep_measure.h"
 #include "app/bench/registry.h"
+#include "app/bench/solver_files.h"
 #include "app/cli_checks.h"
 #include "common/error.h"
 #include "common/file_util.h"
+#include "io/mesh_io.h"
 #include "prep/memory_report.h"
 
 namespace sm::app::bench {
@@ -20,11 +25,13 @@ namespace {
 constexpr double kTargetRate = 2e6;    // connectivity + shell + compaction, elements/s, one core
 constexpr double kTargetMemory = 2.5;  // peak above the process's start / prepared size
 constexpr double kPaperSavings = 0.7249;
+constexpr double kTargetFormatRatio = 1.5;  // a solver format's load against the .pvtu's
 
 struct PrepArgs {
   std::string elements = "1000000,5000000";
   std::vector<std::string> meshes;  // instead of generated ones
   std::vector<std::string> fields;
+  std::vector<std::string> formats;  // cgns, exodus: copies measured beside each mesh
   unsigned threads = 1;
   int runs = 3;
   std::string workDir = "out/bench";
@@ -43,6 +50,28 @@ std::vector<std::string> meshesToMeasure(const PrepArgs& a) {
     paths.push_back(generatedMesh(a.workDir, o));
   }
   return paths;
+}
+
+// The copies of `mesh` in the formats asked for (written once, then reused as generated meshes
+// are): format name and path.
+std::vector<std::pair<std::string, std::string>> formatCopies(const PrepArgs& a,
+                                                              const std::string& mesh) {
+  std::vector<std::pair<std::string, std::string>> copies;
+  std::optional<mesh::UnstructuredMesh> m;
+  for (const std::string& f : a.formats) {
+    const std::string path = joinPath(a.workDir, concat(std::filesystem::path(mesh).stem().string(),
+                                                        f == "cgns" ? ".cgns" : ".exo"));
+    if (!std::filesystem::exists(path)) {
+      if (!m) m = io::readMesh(mesh);
+      std::fprintf(stderr, "writing %s\n", path.c_str());
+      if (f == "cgns")
+        writeCgnsCopy(path, *m);
+      else
+        writeExodusCopy(path, *m);
+    }
+    copies.emplace_back(f, path);
+  }
+  return copies;
 }
 
 nlohmann::json vtkPeer(const PrepArgs& a, const std::string& mesh, int index) {
@@ -123,6 +152,39 @@ void printTables(const nlohmann::json& report) {
       speed.str().c_str(), memory.str().c_str());
   std::printf("VTK %s (Python), same files, same run: seconds (M elements/s)\n\n%s",
               report["vtk_version"].get<std::string>().c_str(), vtk.str().c_str());
+  Table formats({"elements", "format", "load", ".pvtu load", "ratio", "target ≤ 1.5×"}, 2);
+  bool any = false;
+  for (const auto& m : report["meshes"])
+    for (const auto& f : m.value("formats", nlohmann::json::array())) {
+      any = true;
+      formats.add({concat(m["elements"].get<uint64_t>()), f["format"].get<std::string>(),
+                   fixed(f["load_seconds"].get<double>(), 3) + " s",
+                   fixed(m["stages"]["load"]["seconds"].get<double>(), 3) + " s",
+                   fixed(f["ratio"].get<double>(), 2) + "×", met(f["met"].get<bool>())});
+    }
+  if (any)
+    std::printf("\nThe same mesh read from the solvers' formats (median load, read + weld)\n\n%s",
+                formats.str().c_str());
+}
+
+// Load of each copy in another format, against the mesh's own load.
+nlohmann::json measureFormats(const PrepArgs& a, const std::string& path, const nlohmann::json& m) {
+  nlohmann::json out = nlohmann::json::array();
+  const double base = m["stages"]["load"]["seconds"].get<double>();
+  for (const auto& [format, copy] : formatCopies(a, path)) {
+    std::fprintf(stderr, "measuring %s (%d runs)\n", copy.c_str(), a.runs);
+    std::vector<nlohmann::json> runs;
+    for (int r = 0; r < a.runs; ++r) runs.push_back(measurePrepOnce({copy, a.fields, a.threads}));
+    const nlohmann::json s = summarisePrepRuns(runs);
+    const double load = s["stages"]["load"]["seconds"].get<double>();
+    out.push_back({{"format", format},
+                   {"file", copy},
+                   {"elements", s["elements"]},
+                   {"load_seconds", load},
+                   {"ratio", load / base},
+                   {"met", load / base <= kTargetFormatRatio}});
+  }
+  return out;
 }
 
 void runPrepBench(const PrepArgs& a) {
@@ -150,6 +212,7 @@ void runPrepBench(const PrepArgs& a) {
          m["conn_shell_compaction"]["elements_per_second"].get<double>() >= kTargetRate},
         {"memory_met", m["memory_peak"]["ratio_peak_above_start"].get<double>() <= kTargetMemory}};
     m["vtk"] = vtkPeer(a, path, index++);
+    if (!a.formats.empty()) m["formats"] = measureFormats(a, path, m);
     if (m["vtk"].contains("vtk_version")) report["vtk_version"] = m["vtk"]["vtk_version"];
     report["meshes"].push_back(m);
   }
@@ -167,6 +230,10 @@ void configurePrepBench(CLI::App& cmd) {
   cmd.add_option("--mesh", a->meshes, "Measure these files instead of generated meshes");
   cmd.add_option("--field", a->fields, "Point fields to load (default: all, as render does)")
       ->check(nonEmptyName());
+  cmd.add_option("--formats", a->formats,
+                 "Also read each mesh from copies in these formats, against its .pvtu")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"cgns", "exodus"}));
   cmd.add_option("--threads", a->threads, "Reader threads (preparation runs on one core)")
       ->capture_default_str();
   cmd.add_option("--runs", a->runs, "Runs per mesh (medians are reported)")->capture_default_str();
