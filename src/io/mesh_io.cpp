@@ -125,14 +125,8 @@ mesh::UnstructuredMesh readMeshFromMemory(std::span<const uint8_t> bytes, const 
     case Format::Series:
       throw Error(name, ": a series names its steps by file; read it with readMesh");
     case Format::Pieced:
-      if (pieced == PiecedFormat::Su2)
-        return withCellDataOnPoints(readSu2(FileBytes::copyOf(bytes), name, options),
-                                    options.cellDataOnPoints);
-      if (pieced == PiecedFormat::Gmsh)
-        return withCellDataOnPoints(readGmsh(FileBytes::copyOf(bytes), name, options),
-                                    options.cellDataOnPoints);
-      throw Error(name, ": ", piecedFormatDescription(*pieced),
-                  " files are read through their library from a file; read it with readMesh");
+      return withCellDataOnPoints(readPiecedBytes(*pieced, FileBytes::copyOf(bytes), name, options),
+                                  options.cellDataOnPoints);
   }
   return {};
 }

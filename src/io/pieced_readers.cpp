@@ -114,33 +114,54 @@ PiecedLayout piecedLayout(PiecedFormat format, const std::string& path) {
   return layout;
 }
 
-mesh::UnstructuredMesh readPieced(PiecedFormat format, const std::string& path,
-                                  const ReadOptions& options) {
+namespace {
+
+void checkNoClusterArray(const std::string& name, const ReadOptions& options) {
   if (!options.clusterArray.empty())
-    throw FileError(path,
-                    "its pieces (zones, blocks, partitions) are its clusters; a cluster "
-                    "array ('",
+    throw FileError(name,
+                    "its pieces (zones, blocks, partitions) are its clusters; a cluster array ('",
                     options.clusterArray, "') is read from .vtu and .vtk files only");
-  mesh::UnstructuredMesh m;
-  switch (format) {
-    case PiecedFormat::Cgns:
-      m = readCgns(path, options);
-      break;
-    case PiecedFormat::Exodus:
-      m = readExodus(path, options);
-      break;
-    case PiecedFormat::Su2:
-      m = readSu2(FileBytes::open(path), path, options);
-      break;
-    case PiecedFormat::Gmsh:
-      m = readGmsh(FileBytes::open(path), path, options);
-      break;
-  }
-  // A later step is read by reading the same pieces again (piecedFieldStep), which gives the
-  // welded points themselves: a map back to the pieces' own points would be applied to values
-  // that are already welded.
+}
+
+// A later step is read by reading the same pieces again (piecedFieldStep), which gives the welded
+// points themselves: a map back to the pieces' own points would be applied to values that are
+// already welded.
+mesh::UnstructuredMesh withoutPointOrigins(mesh::UnstructuredMesh m) {
   m.pointOrigin.clear();
   return m;
+}
+
+}  // namespace
+
+mesh::UnstructuredMesh readPieced(PiecedFormat format, const std::string& path,
+                                  const ReadOptions& options) {
+  checkNoClusterArray(path, options);
+  switch (format) {
+    case PiecedFormat::Cgns:
+      return withoutPointOrigins(readCgns(path, options));
+    case PiecedFormat::Exodus:
+      return withoutPointOrigins(readExodus(path, options));
+    case PiecedFormat::Su2:
+    case PiecedFormat::Gmsh:
+      return readPiecedBytes(format, FileBytes::open(path), path, options);
+  }
+  return {};
+}
+
+mesh::UnstructuredMesh readPiecedBytes(PiecedFormat format, const FileBytes& bytes,
+                                       const std::string& name, const ReadOptions& options) {
+  checkNoClusterArray(name, options);
+  switch (format) {
+    case PiecedFormat::Su2:
+      return withoutPointOrigins(readSu2(bytes, name, options));
+    case PiecedFormat::Gmsh:
+      return withoutPointOrigins(readGmsh(bytes, name, options));
+    case PiecedFormat::Cgns:
+    case PiecedFormat::Exodus:
+      break;
+  }
+  throw Error(name, ": ", piecedFormatDescription(format),
+              " files are read through their library from a file; read it with readMesh");
 }
 
 std::vector<float> piecedFieldStep(PiecedFormat format, const std::string& path,

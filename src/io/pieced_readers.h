@@ -70,6 +70,11 @@ std::vector<float> piecedFieldStep(PiecedFormat format, const std::string& path,
                                    const std::string& field, uint64_t step,
                                    const ReadOptions& options);
 
+// readPieced of a text format's bytes (fuzzers, in-memory callers); CGNS and Exodus II files are
+// refused (their libraries open files).
+mesh::UnstructuredMesh readPiecedBytes(PiecedFormat format, const FileBytes& bytes,
+                                       const std::string& name, const ReadOptions& options);
+
 // The fields readPieced(format, path, options) loads, with their steps, from the layout.
 std::vector<FieldStepCount> piecedFieldSteps(const std::string& path, const PiecedLayout& layout,
                                              const ReadOptions& options);

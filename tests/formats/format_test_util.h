@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "format_files.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::test {
@@ -36,6 +37,14 @@ class ScratchFolder {
  private:
   std::string path_;
 };
+
+// The files gmsh writes (writeGmshFiles: .msh and .su2), once per process for the tests of both.
+inline const std::string& gmshFilesFolder() {
+  static const ScratchFolder dir("gmsh-files");
+  static const bool written = (writeGmshFiles(dir.path()), true);
+  (void)written;
+  return dir.path();
+}
 
 // The cluster ids of a mesh's elements of type `t`, sorted (readers need not keep an order).
 inline std::vector<int32_t> clustersOf(const mesh::UnstructuredMesh& m, mesh::CellType t) {

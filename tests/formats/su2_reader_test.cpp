@@ -15,15 +15,8 @@ namespace {
 
 using mesh::CellType;
 
-const std::string& folder() {
-  static const test::ScratchFolder dir("su2-unit");
-  static const bool written = (test::writeGmshFiles(dir.path()), true);
-  (void)written;
-  return dir.path();
-}
-
 std::string path(const std::string& name) {
-  return folder() + "/" + name;
+  return test::gmshFilesFolder() + "/" + name;
 }
 
 mesh::UnstructuredMesh read(const std::string& name, const ReadOptions& options = {}) {
