@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash ci/install-deps.sh --build-only
-bash ci/build.sh shellmarch
+bash ci/build.sh shellmarch shellmarch_python  # the program, and `import shellmarch` (build/python)
 export MESA_SHADER_CACHE_DIR=${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}
 mkdir -p demo
 if [ ! -f demo/capsule.pvtu ]; then

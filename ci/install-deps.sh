@@ -21,11 +21,14 @@ fi
 # GoogleTest is in the build set: configuring with the tests on (ci/build.sh) finds it.
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
-  libvulkan-dev vulkan-tools glslang-tools glslc spirv-tools
+  libvulkan-dev vulkan-tools glslang-tools spirv-tools
   libopenmpi-dev openmpi-bin
   libglfw3-dev libglm-dev libgtest-dev googletest
-  libgmsh-dev gmsh libmetis-dev libcgns-dev libexodusii-dev
+  libgmsh-dev libmetis-dev libcgns-dev libexodusii-dev
   libpugixml-dev nlohmann-json3-dev libcli11-dev libstb-dev zlib1g-dev liblz4-dev liblzma-dev libpng-dev
+  fonts-dejavu-core                                # the legend's font
+  python3-dev python3-numpy pybind11-dev python3-mpi4py  # the Python module
+  help2man                                         # man pages from --help
 )
 test_packages=(
   vulkan-validationlayers

@@ -30,7 +30,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="-O1"
 # Only what the chosen tests run; the GPU image tests run in the normal build only.
 timed build cmake --build "$build" -j "$jobs" --target test_mesh test_io test_partition \
   test_prep test_gen test_ref test_compositor_unit test_reliability test_compositor_mpi test_viewer test_viewer_unit test_app \
-  test_shader_cache test_formats shellmarch
+  test_shader_cache test_formats test_common shellmarch
 
 # intercept_tls_get_addr=0: GCC 12's sanitizer runtime (fixed from GCC 14 and LLVM 17) takes a
 # dynamic TLS block that happens to start 16 bytes into a page for a pre-2.25 glibc block with a

@@ -53,6 +53,18 @@ RayFrame makeRayFrame(vec3 org, vec3 dir) {
   return f;
 }
 
+// The camera ray through the centre of pixel px (scene::CameraFrame, the one definition): from the
+// eye, or with a parallel projection from the image plane through the eye, along forward. Every
+// rank computes the same float origin and direction for a pixel, so t (and the sample grid
+// t_k = k dt, and fragment depths) mean the same on every rank.
+RayFrame cameraRay(FrameParams fp, uvec2 px) {
+  float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.halfHeight * fp.aspect;
+  float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.halfHeight;
+  if (fp.parallel != 0u)
+    return makeRayFrame(fp.eye + u * fp.right + v * fp.upOrtho, normalize(fp.forward));
+  return makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));
+}
+
 // xy: the vertex projected along the ray; z: the ray distance of the vertex's foot point.
 vec3 projectVertex(RayFrame f, vec3 p) {
   precise vec3 a = p - f.org;

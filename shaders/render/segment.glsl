@@ -107,9 +107,7 @@ RayFrame pixelRay(FrameParams fp, uvec2 px) {
     RayDesc r = SmRays(fp.rays).v[px.y * fp.width + px.x];
     fr = makeRayFrame(r.origin, r.direction);
   } else {
-    float u = (2.0 * (float(px.x) + 0.5) / float(fp.width) - 1.0) * fp.tanHalfFovy * fp.aspect;
-    float v = (1.0 - 2.0 * (float(px.y) + 0.5) / float(fp.height)) * fp.tanHalfFovy;
-    fr = makeRayFrame(fp.eye, normalize(fp.forward + u * fp.right + v * fp.upOrtho));
+    fr = cameraRay(fp, px);
   }
   return kClip ? clipRay(fr, fp) : fr;
 }

@@ -181,7 +181,13 @@ vec4 piConstant(FrameParams fp, bool above, float L) {
 // sf to sb: [0, c1] outside on sf's side, [c1, c2] inside the range, [c2, 1] outside on sb's side.
 // The outside pieces are rare; behind branches, a SIMD batch without one skips them.
 vec4 preintegrated(FrameParams fp, float sf, float sb, float L) {
-  if (!(L > 0.0) || isnan(sf) || isinf(sf) || isnan(sb) || isinf(sb)) return vec4(0.0);
+  if (!(L > 0.0)) return vec4(0.0);
+  // Non-finite data at either end: the whole piece in the NaN colour (its values inside are NaN
+  // too, as interpolation carries a NaN vertex), transparent unless asked for.
+  if (isnan(sf) || isinf(sf) || isnan(sb) || isinf(sb)) {
+    float alpha = 1.0 - exp(-L * fp.nanColor.a * fp.sigmaScale);
+    return vec4(fp.nanColor.rgb * alpha, alpha);
+  }
   float c1, c2;
   if (sb != sf) {
     float uLo = (fp.piLo - sf) / (sb - sf), uHi = (fp.piHi - sf) / (sb - sf);
@@ -352,10 +358,10 @@ void integrateElement(RayFrame fr, FrameParams fp, uint type, ElementGeom g, vec
     float t = more ? sampleT(k, dt) : b;
     vec3 kept = guess;
     float s = scalarAlongRay(fr, type, W0, X, S, tetGrad, tIn, tOut, sIn, sOut, t, guess, cosine);
-    bool finite = !isnan(s) && !isinf(s);  // non-finite data renders transparent
+    bool finite = !isnan(s) && !isinf(s);  // non-finite data takes the NaN colour
     vec4 c = transferLookupCached(fp, finite ? s : fp.tfLo, tfc);
     if (kShading) c.rgb = shade(fp, c.rgb, 1.0, cosine);
-    if (!finite) c = vec4(0.0);
+    if (!finite) c = fp.nanColor;  // opacity 0 unless asked for: transparent
     float alpha = 1.0 - exp(-c.a * fp.sigmaScale * dt);
     vec4 next;
     next.rgb = acc.rgb + (1.0 - acc.a) * alpha * c.rgb;

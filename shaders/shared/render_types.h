@@ -42,9 +42,11 @@ struct FrameParams {
   uint64_t preintegration;    // element-exact mode: PreintegrationTable::deviceWords(): colours,
   uint64_t piCumulative;      // ... cumulative extinction pairs (then the two ends' rgb, sigma)
   uint64_t segCache;          // cached two-pass: CachedSegment per slot, segCacheK slots per pixel
-  // Camera, rebased to the scene origin.
+  // Camera, rebased to the scene origin (scene::CameraFrame): halfHeight is tan(fovy / 2), or with
+  // `parallel` the parallel scale in device units, the rays then starting on the plane through
+  // the eye.
   vec3 eye;
-  float tanHalfFovy;
+  float halfHeight;
   vec3 forward;
   float aspect;
   vec3 right;
@@ -74,7 +76,7 @@ struct FrameParams {
   uint piCumulativeBins;
   float piLo;  // scalar range of the pre-integration tables
   float piHi;
-  uint pad0;
+  uint parallel;       // 1: parallel projection (camera above)
   float shadeAmbient;  // Blinn-Phong coefficients (src/render/render_settings.h, Shading)
   float shadeDiffuse;
   float shadeSpecular;
@@ -84,6 +86,8 @@ struct FrameParams {
   uint clipCount;
   uint pad1, pad2, pad3;
   vec4 clipPlanes[SM_MAX_CLIP_PLANES];
+  // NaN and infinite data: rgb and opacity (scene::TransferFunction::nanColor; 0: transparent).
+  vec4 nanColor;
 };
 
 // An explicit ray (rebased origin, unit direction), for tests that aim rays at vertices and edges.
@@ -135,7 +139,7 @@ struct RenderStats {
 
 #ifdef __cplusplus
 static_assert(sizeof(SceneRefs) == 13 * 8, "SceneRefs layout");
-static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 6 * 16 + 26 * 4 + SM_MAX_CLIP_PLANES * 16,
+static_assert(sizeof(FrameParams) == 13 * 8 + 11 * 8 + 7 * 16 + 26 * 4 + SM_MAX_CLIP_PLANES * 16,
               "FrameParams layout");
 static_assert(sizeof(RayDesc) == 24, "RayDesc layout");
 static_assert(sizeof(Segment) == 16, "Segment layout");

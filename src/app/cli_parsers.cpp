@@ -1,5 +1,6 @@
 #include "app/cli_parsers.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -125,6 +126,17 @@ std::string formatClipPlane(const scene::ClipPlane& plane) {
     out += (out.empty() ? "" : ",") + std::string(buf);
   }
   return out;
+}
+
+glm::vec4 parseNanColor(const std::string& option, const std::string& value) {
+  const size_t count = size_t(std::count(value.begin(), value.end(), ',')) + 1;
+  if (count != 3 && count != 4)
+    throw Error(option, ": '", value, "' is not R,G,B or R,G,B,OPACITY (numbers in [0, 1])");
+  std::vector<double> v = numbers(option, value, ',', count);
+  if (count == 3) v.push_back(1.0);
+  for (double c : v)
+    if (!(c >= 0.0 && c <= 1.0)) throw Error(option, ": '", value, "' has ", c, ", outside [0, 1]");
+  return glm::vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3]));
 }
 
 render::Shading parseShading(const std::string& option, const std::string& value) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "app/cli_checks.h"
 #include "compositor/deep_compositor.h"
@@ -38,6 +39,8 @@ std::string formatClipPlane(const scene::ClipPlane& plane);
 std::vector<scene::OpacityPoint> parseOpacityPoints(const std::string& option,
                                                     const std::string& value);
 std::string formatOpacityPoints(const std::vector<scene::OpacityPoint>& points);    // exact
+// "r,g,b" or "r,g,b,opacity", each in [0, 1] (opacity 1 when not given).
+glm::vec4 parseNanColor(const std::string& option, const std::string& value);
 render::Shading parseShading(const std::string& option, const std::string& value);  // "ka,kd,ks,n"
 
 }  // namespace sm::app

@@ -183,6 +183,14 @@ void runInfo(const InfoOptions& o) {
 
 }  // namespace
 
+std::string infoJsonText(const std::string& file) {
+  InfoOptions o;
+  o.file = file;
+  const io::ReadOptions read;
+  const mesh::UnstructuredMesh m = io::readMesh(o.file, read);
+  return infoJson(o, m, componentsOf(o, read)).dump();
+}
+
 void registerInfo(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* sub =

@@ -82,6 +82,12 @@ void registerRender(CLI::App& app) {
   cmd->add_flag_callback(
       "--no-prefetch", [job] { job->prefetch = false; },
       "Load each step when its frame starts instead of while the frame before renders");
+  groupSceneOptions(cmd);
+  cmd->footer(
+      "Examples:\n"
+      "  shellmarch render capsule.pvtu --field density --view +y --size 1920x1080 --legend\n"
+      "  shellmarch render run.pvd --field T --time all --colormap \"Cool to Warm\" --out T.png\n"
+      "  mpirun -np 8 shellmarch render big.pvtu --field p --range 0,2 --opacity 0.5:0,2:0.6");
   cmd->callback([cmd, job, raw, check] {
     applySceneOptions(*raw, *job);
     // 0 is "no orbit" inside; given on the command line it is a mistake like a negative count.

@@ -1,5 +1,6 @@
 // shellmarch view MESH [the data, camera and transfer-function options of render]
 //                      [--frames K] [--script FILE] [--screenshot FILE] [--print-camera]
+//                      [--save-camera FILE.pvcc]
 //                      [--headless] [--play] [--fps F] [--no-overlay]
 // An interactive window on rank 0 (GLFW, presented through a Vulkan swapchain); every rank renders
 // every frame. Controls: `shellmarch view --help-controls`; script format: `--help-script`.
@@ -41,6 +42,16 @@ void registerView(CLI::App& app) {
   cmd->add_flag(
       "--print-camera", opts->printCamera,
       "At exit, print the final camera and settings as one JSON line, with the render arguments");
+  cmd->add_option("--save-camera", opts->saveCamera,
+                  "At exit, write the final camera as a ParaView camera file (.pvcc: ParaView "
+                  "loads it in Adjust Camera > Configurations; --camera reads it)")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            return fileExtension(path) == ".pvcc" ? std::string()
+                                                  : "'" + path + "' must end in .pvcc";
+          },
+          "FILE.pvcc"))
+      ->check(writableFile());
   cmd->add_flag("--headless", opts->headless,
                 "No window: present to a headless surface (needs --frames or --script)");
   auto noOverlay = std::make_shared<bool>(false);
@@ -67,8 +78,11 @@ void registerView(CLI::App& app) {
         throw CLI::Success();
       },
       "Print the --script format and exit");
+  groupSceneOptions(cmd);
   cmd->callback([cmd, job, raw, opts, noOverlay] {
     applySceneOptions(*raw, *job);
+    if (job->transparent)
+      throw Error("--background transparent: for render only (a window shows no transparency)");
     // 0 is "no cap" inside; given on the command line it is a mistake like a negative rate.
     if (cmd->count("--fps") && !(opts->fps > 0))
       throw Error("--fps: ", opts->fps, " is not a positive number of steps a second");

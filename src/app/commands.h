@@ -17,11 +17,14 @@ class UsageError : public Error {
 };
 
 void registerInfo(CLI::App& app);      // cmd_info.cpp
+// What `info --json FILE` prints, on one line (cmd_info.cpp; the Python module's info()).
+std::string infoJsonText(const std::string& file);
 void registerGenerate(CLI::App& app);  // cmd_generate.cpp
 void registerRender(CLI::App& app);    // cmd_render.cpp
 void registerBench(CLI::App& app);     // cmd_bench.cpp (subcommands: bench/registry.cpp)
 void registerView(CLI::App& app);      // cmd_view.cpp
 void registerDevices(CLI::App& app);   // cmd_devices.cpp
 void registerCompare(CLI::App& app);   // cmd_compare.cpp
+void registerCompletion(CLI::App& app);  // cmd_completion.cpp: after every other command
 
 }  // namespace sm::app

@@ -14,6 +14,8 @@
 #include "app/commands.h"
 #include "common/error.h"
 #include "common/log.h"
+#include "common/parallel.h"
+#include "common/progress.h"
 
 namespace {
 
@@ -30,6 +32,24 @@ bool isRankZero() {
   return true;
 }
 
+std::string versionText() {
+#ifdef __clang__
+  const char* compiler = "";  // __VERSION__ names clang itself
+#else
+  const char* compiler = "GCC ";
+#endif
+  return sm::concat("shellmarch ", SHELLMARCH_VERSION, " (", SHELLMARCH_BUILD_TYPE, " build, ",
+                    compiler, __VERSION__, ")");
+}
+
+// Mesa's CPU driver starts a thread per core in every process unless told otherwise: under
+// mpirun, 8 ranks on 16 cores would run 128 threads. It gets this process's share, as the
+// readers do (common/parallel.h), unless the user chose a number.
+void shareTheNodeWithLavapipe() {
+  if (!std::getenv("LP_NUM_THREADS"))
+    setenv("LP_NUM_THREADS", std::to_string(sm::hardwareThreads()).c_str(), 0);
+}
+
 void printError(const std::string& what) {
   if (!isRankZero()) std::this_thread::sleep_for(std::chrono::seconds(2));
   std::fprintf(stderr, "shellmarch: error: %s\n", what.c_str());
@@ -43,9 +63,12 @@ int main(int argc, char** argv) {
   // arrays stay resident and a rank's peak memory is the sum of every stage's arrays instead of
   // the largest live set (docs/BENCHMARKS.md, peak memory).
   mallopt(M_MMAP_THRESHOLD, 128 << 10);
+  shareTheNodeWithLavapipe();
   CLI::App app{
       "shellmarch: direct volume rendering of unstructured meshes, data-parallel over MPI"};
   app.require_subcommand(1);
+  app.fallthrough();  // -v, -q and --version after the command too: `render MESH -q`
+  app.set_version_flag("--version", versionText(), "Print the version and build, then exit");
   bool verbose = false, quiet = false;
   app.add_flag("-v,--verbose", verbose, "More messages");
   app.add_flag("-q,--quiet", quiet, "Errors only");
@@ -53,6 +76,7 @@ int main(int argc, char** argv) {
     sm::app::refuseEmptyValues(app);
     if (verbose) sm::log::setLevel(sm::log::Level::Info);
     if (quiet) sm::log::setLevel(sm::log::Level::Quiet);
+    sm::allowProgress(!quiet && isRankZero());
   });
   sm::app::registerInfo(app);
   sm::app::registerGenerate(app);
@@ -61,6 +85,7 @@ int main(int argc, char** argv) {
   sm::app::registerView(app);
   sm::app::registerDevices(app);
   sm::app::registerCompare(app);
+  sm::app::registerCompletion(app);
   try {
     app.name(argv[0]);
     app.parse(sm::app::parserArguments(argc, argv));

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "app/frame_extras.h"
+#include "app/frame_writer.h"
 #include "app/memory_advice.h"
 #include "app/rank_pipeline.h"
 #include "app/render_setup.h"
@@ -23,6 +24,7 @@
 #include "common/fault_injection.h"
 #include "common/file_util.h"
 #include "common/memory.h"
+#include "common/progress.h"
 #include "common/timer.h"
 #include "io/mesh_io.h"
 #include "render/frame_defaults.h"
@@ -102,6 +104,7 @@ struct Frames {
   const render::RenderSettings& settings;
   StatsReport& report;
   Collectives& coll;
+  FrameWriter& writer;  // rank 0's image files, encoded beside the frame loop
 };
 
 // A time sequence is numbered even when it turns out one frame long (--time all of a single
@@ -119,9 +122,12 @@ void writeFrame(const Frames& f, const FramePlan& p, render::FrameResult& frame)
   if (f.coll.rank() == 0) {
     scene::Image img(f.job.width, f.job.height);
     img.pixels = std::move(frame.pixels);
-    if (f.job.legend)
-      scene::drawLegend(img, f.settings.transferFunction, f.field, f.job.background);
-    scene::writeImage(framePath(f.job.out, p.number, sequence), img, f.job.background);
+    const scene::Background background = f.job.imageBackground();
+    if (f.job.legend) scene::drawLegend(img, f.settings.transferFunction, f.field, background);
+    if (f.job.frameSink)
+      f.job.frameSink(img, p.number);
+    else
+      f.writer.write(framePath(f.job.out, p.number, sequence), img, background);  // a copy
     frame.pixels = std::move(img.pixels);  // back for the next frame (Renderer::render's reuse)
   }
 }
@@ -139,6 +145,7 @@ render::FrameTimings renderFrames(const Frames& f) {
   std::optional<uint64_t> shown;  // the step whose scalars frames read
   render::FrameResult frame;      // its pixels' storage is handed from frame to frame
   std::optional<render::FrameTimings> first;
+  Progress progress("frame", total);
   if (total > 1 && (f.job.stats || !f.job.statsJson.empty())) {
     // The first frame compiles the pipelines; timed, it would dwarf the steady frames.
     loads.loadFor(f.field, stepOf(0));
@@ -162,6 +169,7 @@ render::FrameTimings renderFrames(const Frames& f) {
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
     stats.addFrame(int(i / perRun), stepOf(i), frameMs, renderMs, scalars);
     if (i < perRun) writeFrame(f, f.plan[i], frame);
+    progress.advance();
   }
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
   return first.value_or(render::FrameTimings{});
@@ -258,8 +266,11 @@ void runRender(const RenderJob& job, Collectives& coll) {
   checkOutputs(job);
   if (job.repeat < 1) throw Error("--repeat: must be at least 1, not ", job.repeat);
   if (job.orbit < 0) throw Error("--orbit: must be at least 1, not ", job.orbit);
-  if (fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
+  if (!job.frameSink && fileExtension(job.out) != ".png" && fileExtension(job.out) != ".pfm")
     throw Error("--out: '", job.out, "' must end in .png or .pfm");
+  if (job.transparent && !job.frameSink && fileExtension(job.out) == ".pfm")
+    throw Error("--background transparent: --out '", job.out,
+                "' is a PFM, which has no alpha channel; write a .png");
   Timer total;
   ShareOptions shareOptions = job.share;
   shareOptions.streamSteps = true;
@@ -304,8 +315,11 @@ void runRender(const RenderJob& job, Collectives& coll) {
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
                     ctx.deviceName(), vk::tracerName(renderer.tracer()), s);
     report.setHostMemory(peakAfterLoad);
-    const render::FrameTimings first = renderFrames(
-        {job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report, coll});
+    FrameWriter writer;
+    const render::FrameTimings first =
+        renderFrames({job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report,
+                      coll, writer});
+    writer.finish();  // every image written (or its error thrown) before the statistics
     report.setStartup(ctx, first.totalMs, first.traversalMs + first.marchMs);
     report.finish(ctx.validationErrors());
   } catch (const vk::DeviceMemoryError& e) {

@@ -85,20 +85,32 @@ uint64_t agreedStepCount(const std::string& path, const std::string& field, uint
 }
 
 scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole) {
+  const double aspect = double(job.width) / job.height;
+  scene::Camera c;
   if (!job.eye) {
     if (job.at || job.up) throw Error("--at and --up need --eye (or use --view)");
-    return scene::frameBounds(whole, scene::parseViewPreset(job.view),
-                              double(job.width) / job.height, job.fovy);
+    c = scene::frameBounds(
+        whole, scene::parseViewPreset(job.view), aspect, job.fovy,
+        job.parallel ? scene::Projection::Parallel : scene::Projection::Perspective);
+  } else {
+    c.eye = *job.eye;
+    c.at = job.at.value_or(whole.center());
+    if (!job.at && c.eye == c.at)
+      throw Error("--eye: ", c.eye.x, ",", c.eye.y, ",", c.eye.z,
+                  " is the centre of the data, where the camera looks without --at: give --at");
+    c.up = job.up.value_or(scene::defaultUp(c.at - c.eye));
+    c.fovyDeg = job.fovy;
+    c.parallel = job.parallel;
+    c.parallelScale = scene::fitParallelScale(whole, aspect);
   }
-  scene::Camera c;
-  c.eye = *job.eye;
-  c.at = job.at.value_or(whole.center());
-  if (!job.at && c.eye == c.at)
-    throw Error("--eye: ", c.eye.x, ",", c.eye.y, ",", c.eye.z,
-                " is the centre of the data, where the camera looks without --at: give --at");
-  c.up = job.up.value_or(glm::dvec3(0, 0, 1));
-  c.fovyDeg = job.fovy;
+  if (job.parallelScale) c.parallelScale = *job.parallelScale;
   return c;
+}
+
+void applyNanColor(const RenderJob& job, scene::TransferFunction& tf) {
+  if (!job.nanColor) return;
+  tf.nanColor = glm::vec3(*job.nanColor);
+  tf.nanOpacity = job.nanColor->a;
 }
 
 render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
@@ -120,6 +132,7 @@ render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share
   }
   if (!job.opacityPoints.empty())
     scene::setOpacityPoints(s.transferFunction, job.opacityPoints, "--opacity");
+  applyNanColor(job, s.transferFunction);
   s.transferFunction.opacityScale = job.opacityScale;
   s.transferFunction.unitDistance =
       job.unitDistance.value_or(render::defaultUnitDistance(share.wholeBounds));

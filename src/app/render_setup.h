@@ -49,6 +49,8 @@ scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole);
 
 // Settings for the job's first frame: camera, transfer function over `range` (of `field`, the one
 // shown, for messages), sample step; throws naming the option when a value is unusable.
+// --nan-color over the colour map's own NaN colour (the viewer keeps it across maps).
+void applyNanColor(const RenderJob& job, scene::TransferFunction& tf);
 render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
                                     const std::string& field, std::pair<double, double> range);
 

@@ -9,6 +9,7 @@
 #include "common/file_util.h"
 #include "common/log.h"
 #include "common/memory.h"
+#include "common/parallel.h"
 #include "prep/memory_report.h"
 
 namespace sm::app {
@@ -29,6 +30,9 @@ PixelCountSummary summarise(const std::vector<uint32_t>& counts) {
 }
 
 StatsReport::StatsReport(const RenderJob& job, Collectives& coll) : job_(job), coll_(coll) {
+  json_["version"] = SHELLMARCH_VERSION;
+  const ThreadBudget threads = threadBudget();  // rank 0's: ranks of one node take the same
+  json_["threads"] = {{"per_rank", threads.threads}, {"from", threads.reason}};
   json_["mesh"] = job.mesh;
   json_["ranks"] = coll.size();
   json_["width"] = job.width;

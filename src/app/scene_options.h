@@ -19,12 +19,19 @@ struct SceneOptionText {
   bool plain = false;
   bool shading = false;
   bool logScale = false;
+  bool parallel = false;
+  const CLI::Option* fovy = nullptr;  // given or not: it overrides a --camera file's angle
 };
 
 // Registers the shared options on `cmd`, in render's order; `timeHelp` describes --time, whose
 // accepted values differ between the commands. `job` and `raw` must outlive the parse.
 void addSceneOptions(CLI::App* cmd, RenderJob& job, SceneOptionText& raw,
                      const std::string& timeHelp);
+
+// Sorts every option of `cmd` into the help's groups (data, camera, transfer function, time,
+// output, parallel, device), by name. Throws (an invariant) for an option no group names, so a
+// new option cannot land in CLI11's catch-all "OPTIONS" unseen.
+void groupSceneOptions(CLI::App* cmd);
 
 // Parses the text options into `job`; throws sm::Error naming the option.
 void applySceneOptions(SceneOptionText& raw, RenderJob& job);

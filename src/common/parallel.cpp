@@ -1,7 +1,11 @@
 #include "common/parallel.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -9,8 +13,51 @@
 
 namespace sm {
 
-unsigned hardwareThreads() {
+unsigned machineThreads() {
   return std::max(1u, std::thread::hardware_concurrency());
+}
+
+namespace {
+
+// A positive count at the start of `text` ("4", or OpenMP's nested list "4,2"), else 0.
+unsigned leadingCount(const char* text) {
+  if (!text) return 0;
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text, &end, 10);
+  if (end == text || errno || v <= 0 || (*end && *end != ',')) return 0;
+  return static_cast<unsigned>(std::min<long>(v, 1 << 16));
+}
+
+unsigned affinityCpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return machineThreads();
+  return std::max(1, CPU_COUNT(&set));
+}
+
+}  // namespace
+
+ThreadBudget threadBudget(const std::function<const char*(const char*)>& env, unsigned maskCpus,
+                          unsigned nodeCpus) {
+  auto get = [&](const char* name) { return env ? env(name) : std::getenv(name); };
+  if (const unsigned omp = leadingCount(get("OMP_NUM_THREADS"))) return {omp, "OMP_NUM_THREADS"};
+  const unsigned mask = maskCpus ? maskCpus : affinityCpus();
+  const unsigned node = nodeCpus ? nodeCpus : machineThreads();
+  // Ranks of this job on this node (Open MPI, MPICH/Hydra, Slurm), when the launcher bound none.
+  unsigned local = 0;
+  for (const char* var : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "SLURM_NTASKS_PER_NODE"})
+    if ((local = leadingCount(get(var)))) break;
+  // min(): a mask of one socket shared by that socket's ranks must not give each the socket.
+  if (local > 1 && mask * local > node)
+    return {std::max(1u, std::min(mask, node / local)),
+            "cores / " + std::to_string(local) + " ranks on this node"};
+  return {mask, "affinity mask"};
+}
+
+unsigned hardwareThreads() {
+  static const unsigned threads = threadBudget().threads;
+  return threads;
 }
 
 void parallelFor(int64_t n, const std::function<void(int64_t, int64_t)>& body, unsigned threads,

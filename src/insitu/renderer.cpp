@@ -300,14 +300,26 @@ std::vector<uint8_t> Image::toRgba8() const {
   return out;
 }
 
-void Image::writePng(const std::string& path, std::array<float, 3> background) const {
-  if (empty()) throw Error(path + ": no image to write (images exist on rank 0 only)");
-  sm::scene::Image img(width, height);
+namespace {
+
+void writeImagePng(const Image& image, const std::string& path,
+                   const sm::scene::Background& background) {
+  if (image.empty()) throw Error(path + ": no image to write (images exist on rank 0 only)");
+  sm::scene::Image img(image.width, image.height);
+  const std::vector<float>& rgba = image.rgba;
   for (size_t i = 0; i < img.pixels.size(); ++i)
     img.pixels[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], rgba[4 * i + 3]);
-  translated([&] {
-    sm::scene::writePng(path, img, glm::vec3(background[0], background[1], background[2]));
-  });
+  translated([&] { sm::scene::writePng(path, img, background); });
+}
+
+}  // namespace
+
+void Image::writePng(const std::string& path, std::array<float, 3> background) const {
+  writeImagePng(*this, path, glm::vec3(background[0], background[1], background[2]));
+}
+
+void Image::writeTransparentPng(const std::string& path) const {
+  writeImagePng(*this, path, std::nullopt);
 }
 
 }  // namespace shellmarch::insitu

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/progress.h"
 #include "io/readers.h"
 #include "io/vtu_document.h"
 #include "io/weld.h"
@@ -177,8 +178,12 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
                     "') is read from .vtu and .vtk files only");
   const std::vector<std::string> files = pvtuPieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
-  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
+  const std::vector<int> chosen = pvtuChosenPieces(path, static_cast<int>(files.size()), options);
+  Progress progress("piece read", chosen.size());
+  for (int i : chosen) {
     pieces.push_back(readVtu(open(files[i]), files[i], options, i));
+    progress.advance();
+  }
   // From the pieces' headers: their fields' step counts (pieces loaded with one step each cannot
   // show the weld that they differ) and components (a magnitude welds to a scalar without a
   // seam), each piece against the file's first, so that ranks reading other pieces agree.

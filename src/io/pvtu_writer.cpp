@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/progress.h"
 #include "io/mesh_io.h"
 #include "io/vtk_xml_names.h"
 
@@ -154,11 +155,13 @@ void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
   const auto byCluster = cellsByCluster(mesh);
   std::vector<uint32_t> local(mesh.points.size(), 0xFFFFFFFFu);
   std::string pieces;
+  Progress progress("piece written", byCluster.size());
   for (size_t k = 0; k < byCluster.size(); ++k) {
     const std::string file = concat(stem, "_", k, ".vtu");
     writeVtu(staged.stage(folder / file), extractPiece(mesh, int32_t(k), byCluster[k], local),
              options);
     pieces += concat("    <Piece Source=\"", xmlEscape(stem + "/" + file), "\"/>\n");
+    progress.advance();
   }
   const std::string x = pvtuIndex(mesh, pieces);
   writeBytesAtomically(staged.stage(p), {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
@@ -197,6 +200,7 @@ void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
   for (const mesh::CellField& f : mesh.cellFields)
     if (!f.steps.empty()) step.cellFields.push_back({f.name, {}});
   std::string sets;
+  Progress progress("step written", steps);
   for (uint64_t k = 0; k < steps; ++k) {
     size_t out = 0;
     for (const mesh::Field& all : mesh.fields)
@@ -213,6 +217,7 @@ void writePvdSeries(const std::string& path, const mesh::UnstructuredMesh& mesh,
                   mesh.timeValues.empty() ? double(k) : mesh.timeValues[k]);
     sets += concat("    <DataSet timestep=\"", time, "\" part=\"0\" file=\"", xmlEscape(file),
                    "\"/>\n");
+    progress.advance();
   }
   const std::string x =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n" +

@@ -191,7 +191,7 @@ RenderResult ReferenceRenderer::render(const scene::Camera& camera, int width, i
   auto rows = [&](int64_t begin, int64_t end) {
     for (int y = int(begin); y < int(end); ++y)
       for (int x = 0; x < width; ++x)
-        renderPixel(frame.eye, frame.pixelDirection(x, y), values, tf, settings,
+        renderPixel(frame.pixelOrigin(x, y), frame.pixelDirection(x, y), values, tf, settings,
                     result.image.at(x, y), result.stats[size_t(y) * width + x]);
   };
   parallelFor(height, rows, settings.threads, 1);

@@ -4,7 +4,8 @@
 // box it touches, found through a BVH over element boxes.
 //
 // What it computes (docs/ARCHITECTURE.md, "Rendering model", implemented exactly):
-//  - Rays: scene::cameraFrame(...).pixelDirection, origin at the eye; t is world distance.
+//  - Rays: scene::cameraFrame(...).pixelOrigin and pixelDirection (the eye, or with a parallel
+//    projection the pixel's point on the plane through it); t is world distance from the origin.
 //  - Crossings (traceRay): every interval of the ray (t >= 0) inside an element's triangulated
 //    boundary (see ray_element.h for the exact, watertight test), sorted by entry distance. In a
 //    conforming mesh consecutive crossings touch exactly (t_out == next t_in, bit for bit).

@@ -25,6 +25,13 @@ glm::vec3 toFloat(const glm::dvec3& v) {
   return glm::vec3(v);
 }
 
+// Whether box b reaches within `pad` of the plane through `point` with unit normal `normal`.
+bool boxMeetsPlane(const mesh::Bounds& b, const glm::dvec3& point, const glm::dvec3& normal,
+                   double pad) {
+  const glm::dvec3 c = b.center() - point, half = 0.5 * (b.hi - b.lo);
+  return std::abs(glm::dot(c, normal)) <= glm::dot(half, glm::abs(normal)) + pad;
+}
+
 // The table the device reads. A constant range maps every value to the table's middle
 // (scene::TransferFunction::lookup); the device gets that colour in every entry, so no rounding
 // of the value (float, far from zero) can move a lookup off it.
@@ -102,6 +109,9 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   const glm::dvec3 pad(1e-3 * b.diagonal() + 1e-30);
   bool inBounds = !b.empty && glm::all(glm::greaterThanEqual(eye, b.lo - pad)) &&
                   glm::all(glm::lessThanEqual(eye, b.hi + pad));
+  // Parallel rays start anywhere on the plane through the eye: they may start inside when the
+  // box reaches that plane.
+  if (cam.parallel && !b.empty) inBounds = boxMeetsPlane(b, eye, cam.forward, pad.x);
   p.eyeMayBeInside = (useRays_ || inBounds) ? 1u : 0u;
   p.boundsValid = b.empty ? 0u : 1u;
   if (!b.empty) {
@@ -112,7 +122,9 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.forward = toFloat(cam.forward);
   p.right = toFloat(cam.right);
   p.upOrtho = toFloat(cam.upOrtho);
-  p.tanHalfFovy = float(cam.tanHalfFovy);
+  // A parallel scale is a length: device lengths are world lengths times the scale.
+  p.halfHeight = float(cam.parallel ? cam.halfHeight * scale : cam.halfHeight);
+  p.parallel = cam.parallel ? 1u : 0u;
   p.aspect = float(cam.aspect);
   p.width = uint32_t(s.width);
   p.height = uint32_t(s.height);
@@ -130,6 +142,7 @@ gpu::FrameParams Renderer::frameParams(const RenderSettings& s) const {
   p.tfEntries = uint32_t(tf.table.size());
   p.sigmaScale = float(tf.opacityScale / (tf.unitDistance * scale));
   p.earlyTermination = float(s.earlyTermination);
+  p.nanColor = glm::vec4(tf.nanColor, tf.nanOpacity);
   if (s.shading.enabled) {
     const Shading& sh = s.shading;
     if (!(sh.ambient >= 0 && sh.diffuse >= 0 && sh.specular >= 0 && sh.shininess >= 1 &&

@@ -21,8 +21,25 @@ ViewPreset parseViewPreset(const std::string& s) {
   throw Error("--view: unknown view '", s, "' (use iso, +x, -x, +y, -y, +z or -z)");
 }
 
-Camera frameBounds(const mesh::Bounds& b, ViewPreset view, double aspect, double fovyDeg) {
-  glm::dvec3 dir(0.0), up(0, 0, 1);
+glm::dvec3 defaultUp(const glm::dvec3& viewDirection) {
+  const double len = glm::length(viewDirection);
+  // sin(1 degree): closer to z than that, +z would make a badly conditioned frame.
+  if (len > 0 && glm::length(glm::cross(viewDirection / len, glm::dvec3(0, 0, 1))) < 0.0174524)
+    return {0, 1, 0};
+  return {0, 0, 1};
+}
+
+namespace {
+
+double boundingRadius(const mesh::Bounds& b) {
+  return std::max(0.5 * b.diagonal(), 1e-30);
+}
+
+}  // namespace
+
+Camera frameBounds(const mesh::Bounds& b, ViewPreset view, double aspect, double fovyDeg,
+                   Projection projection) {
+  glm::dvec3 dir(0.0);
   switch (view) {
     case ViewPreset::Iso:
       dir = glm::normalize(glm::dvec3(-1, -1.3, -0.8));
@@ -41,30 +58,38 @@ Camera frameBounds(const mesh::Bounds& b, ViewPreset view, double aspect, double
       break;
     case ViewPreset::PosZ:
       dir = {0, 0, 1};
-      up = {0, 1, 0};
       break;
     case ViewPreset::NegZ:
       dir = {0, 0, -1};
-      up = {0, 1, 0};
       break;
   }
   Camera c;
   c.fovyDeg = fovyDeg;
   c.at = b.empty ? glm::dvec3(0.0) : b.center();
-  double radius = std::max(0.5 * b.diagonal(), 1e-30);
   double halfY = glm::radians(fovyDeg) * 0.5;
   double halfX = std::atan(std::tan(halfY) * aspect);
   double half = std::min(halfX, halfY);
-  double dist = radius / std::sin(half) * 1.02;
+  double dist = boundingRadius(b) / std::sin(half) * 1.02;
   c.eye = c.at - dir * dist;
-  c.up = up;
+  c.up = defaultUp(dir);
+  if (projection == Projection::Parallel) {
+    c.parallel = true;
+    c.parallelScale = fitParallelScale(b, aspect);
+  }
   return c;
+}
+
+double fitParallelScale(const mesh::Bounds& b, double aspect) {
+  // The half height must hold the radius, and so must the half width, halfHeight * aspect.
+  return boundingRadius(b) * 1.02 * std::max(1.0, 1.0 / aspect);
 }
 
 CameraFrame cameraFrame(const Camera& c, int width, int height) {
   if (width <= 0 || height <= 0) throw Error("image size ", width, "x", height, " is empty");
   if (!(c.fovyDeg > 0.0 && c.fovyDeg < 180.0))
     throw Error("--fovy: ", c.fovyDeg, " degrees is not in (0, 180)");
+  if (c.parallel && !(c.parallelScale > 0.0 && c.parallelScale < 1e30))
+    throw Error("--parallel-scale: ", c.parallelScale, " is not a positive length below 1e30");
   glm::dvec3 f = c.at - c.eye;
   if (glm::length(f) == 0.0) throw Error("camera: --eye and --at are the same point");
   f = glm::normalize(f);
@@ -78,16 +103,25 @@ CameraFrame cameraFrame(const Camera& c, int width, int height) {
   fr.forward = f;
   fr.right = r;
   fr.upOrtho = glm::cross(r, f);
-  fr.tanHalfFovy = std::tan(glm::radians(c.fovyDeg) * 0.5);
+  fr.parallel = c.parallel;
+  fr.halfHeight = c.parallel ? c.parallelScale : std::tan(glm::radians(c.fovyDeg) * 0.5);
   fr.aspect = double(width) / double(height);
   fr.width = width;
   fr.height = height;
   return fr;
 }
 
+glm::dvec3 CameraFrame::origin(double px, double py) const {
+  if (!parallel) return eye;
+  double u = (2.0 * px / width - 1.0) * halfHeight * aspect;
+  double v = (1.0 - 2.0 * py / height) * halfHeight;
+  return eye + u * right + v * upOrtho;
+}
+
 glm::dvec3 CameraFrame::direction(double px, double py) const {
-  double u = (2.0 * px / width - 1.0) * tanHalfFovy * aspect;
-  double v = (1.0 - 2.0 * py / height) * tanHalfFovy;
+  if (parallel) return forward;
+  double u = (2.0 * px / width - 1.0) * halfHeight * aspect;
+  double v = (1.0 - 2.0 * py / height) * halfHeight;
   return glm::normalize(forward + u * right + v * upOrtho);
 }
 

@@ -5,9 +5,6 @@
 #include <cstdio>
 #include <cstring>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
 #include <glm/common.hpp>
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -16,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "scene/png_writer.h"
 
 namespace sm::scene {
 namespace {
@@ -25,38 +23,51 @@ uint8_t toByte(float v) {
   return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-void writeEncoded(const std::string& path, const std::vector<uint8_t>& raw, int w, int h,
-                  int comp) {
-  std::vector<uint8_t> png;
-  auto sink = [](void* ctx, void* data, int size) {
-    auto* out = static_cast<std::vector<uint8_t>*>(ctx);
-    auto* p = static_cast<uint8_t*>(data);
-    out->insert(out->end(), p, p + size);
-  };
-  if (!stbi_write_png_to_func(sink, &png, w, h, comp, raw.data(), w * comp))
-    throw Error(path, ": PNG encoding failed");
-  writeBytesAtomically(path, png);
-}
-
 }  // namespace
 
-void writePng(const std::string& path, const Image& img, const glm::vec3& bg) {
-  std::vector<uint8_t> raw(size_t(img.width) * img.height * 3);
+std::vector<uint8_t> toRgba8(const Image& img, const Background& background) {
+  std::vector<uint8_t> raw(img.pixels.size() * 4);
   for (size_t i = 0; i < img.pixels.size(); ++i) {
     const glm::vec4& p = img.pixels[i];
-    glm::vec3 c = glm::vec3(p) + (1.0f - p.a) * bg;
-    raw[3 * i] = toByte(c.r);
-    raw[3 * i + 1] = toByte(c.g);
-    raw[3 * i + 2] = toByte(c.b);
+    glm::vec3 c;
+    float a = 1.0f;
+    if (background) {
+      c = glm::vec3(p) + (1.0f - p.a) * *background;
+    } else {
+      a = std::isfinite(p.a) ? std::clamp(p.a, 0.0f, 1.0f) : 0.0f;
+      c = a > 0.0f ? glm::vec3(p) / a : glm::vec3(0.0f);
+    }
+    raw[4 * i] = toByte(c.r);
+    raw[4 * i + 1] = toByte(c.g);
+    raw[4 * i + 2] = toByte(c.b);
+    raw[4 * i + 3] = toByte(a);
   }
-  writeEncoded(path, raw, img.width, img.height, 3);
+  return raw;
+}
+
+void writePng(const std::string& path, const Image& img, const Background& background) {
+  std::vector<uint8_t> raw = toRgba8(img, background);
+  int channels = 4;
+  if (background) {  // opaque: RGB, a quarter smaller before compression
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) raw[3 * i + c] = raw[4 * i + c];
+    raw.resize(img.pixels.size() * 3);
+    channels = 3;
+  }
+  std::vector<uint8_t> png;
+  try {
+    png = encodePng(raw, img.width, img.height, channels);
+  } catch (const Error& e) {
+    throw Error(path, ": ", e.what());
+  }
+  writeBytesAtomically(path, png);
 }
 
 void writePngRgba(const std::string& path, const Image& img) {
   std::vector<uint8_t> raw(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < img.pixels.size(); ++i)
     for (int c = 0; c < 4; ++c) raw[4 * i + c] = toByte(img.pixels[i][c]);
-  writeEncoded(path, raw, img.width, img.height, 4);
+  writeBytesAtomically(path, encodePng(raw, img.width, img.height, 4));
 }
 
 void writePfm(const std::string& path, const Image& img, const glm::vec3& bg) {
@@ -93,10 +104,12 @@ Image readPfm(const std::string& path) {
   return img;
 }
 
-void writeImage(const std::string& path, const Image& img, const glm::vec3& background) {
+void writeImage(const std::string& path, const Image& img, const Background& background) {
   std::string ext = fileExtension(path);
   if (ext == ".png") return writePng(path, img, background);
-  if (ext == ".pfm") return writePfm(path, img, background);
+  if (ext == ".pfm" && !background)
+    throw Error("--out: '", path, "': a PFM has no alpha; a transparent background needs .png");
+  if (ext == ".pfm") return writePfm(path, img, *background);
   throw Error("--out: '", path, "' must end in .png or .pfm");
 }
 

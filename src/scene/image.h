@@ -2,6 +2,8 @@
 // metrics that image tests and accuracy benchmarks report.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,16 +21,27 @@ struct Image {
   const glm::vec4& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
 };
 
-// Composites the premultiplied image over a background and writes an 8-bit RGB PNG, atomically.
-void writePng(const std::string& path, const Image& img, const glm::vec3& background);
+// What a frame lies over in an 8-bit image: a colour, or none (std::nullopt: transparent, the
+// file keeps the frame's alpha; `--background transparent`).
+using Background = std::optional<glm::vec3>;
+
+// The 8-bit RGBA bytes (row 0 first, 4 per pixel) that a PNG of `img` holds: the premultiplied
+// colour composited over `background` with alpha 255, or with no background the colour
+// un-premultiplied (colour / alpha; 0 where alpha is 0) and the alpha. Every PNG writer (files,
+// the in-situ and Python APIs) goes through this, so that they agree byte for byte.
+std::vector<uint8_t> toRgba8(const Image& img, const Background& background);
+// Writes toRgba8(img, background) as a PNG, atomically (a temporary name, then renamed): RGB over a
+// background, RGBA without one. Encoded by libpng (scene/png_writer.h).
+void writePng(const std::string& path, const Image& img, const Background& background);
 // Writes the image's colour with alpha as an 8-bit RGBA PNG (debug and test artefacts).
 void writePngRgba(const std::string& path, const Image& img);
 // Portable float map (binary "PF", little-endian, bottom row first as the format says): the
 // composited colour over `background`, unquantised, for comparisons finer than 8 bits allow.
 void writePfm(const std::string& path, const Image& img, const glm::vec3& background);
 Image readPfm(const std::string& path);  // alpha = 1
-// Writes PNG or PFM by the file's extension (.png, .pfm); throws for other extensions.
-void writeImage(const std::string& path, const Image& img, const glm::vec3& background);
+// Writes PNG or PFM by the file's extension (.png, .pfm); throws for other extensions, and for a
+// PFM without a background (the format has no alpha).
+void writeImage(const std::string& path, const Image& img, const Background& background);
 // Reads an 8-bit PNG as an opaque image (alpha = 1 unless the file has alpha); throws on failure.
 Image readPng(const std::string& path);
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "scene/bitmap_font.h"
+#include "scene/text_font.h"
 
 namespace sm::scene {
 namespace {
@@ -65,6 +65,10 @@ glm::vec3 tableColor(const TransferFunction& tf, double x) {
 
 }  // namespace
 
+int legendLineHeight(int scale) {
+  return TextFont::legend().height(scale) + 2 * scale;
+}
+
 std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, int scale) {
   const double pixels = double(std::max(barHeight - 1, 1));
   // A constant field (or a range narrower than the labels' digits) would read "7 / 7 / 7": one
@@ -73,7 +77,7 @@ std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, i
   std::vector<LegendTick> out = {{0.0, label(tf.lo)}};
   std::vector<LegendTick> inside;
   if (tf.scale == ScalarScale::Log)
-    inside = decades(tf, pixels, double((kGlyphHeight + 2) * scale), double(3 * scale));
+    inside = decades(tf, pixels, double(legendLineHeight(scale)), double(3 * scale));
   if (inside.empty()) inside.push_back({0.5, label(tf.valueAt(0.5))});
   out.insert(out.end(), inside.begin(), inside.end());
   out.push_back({1.0, label(tf.hi)});
@@ -82,34 +86,50 @@ std::vector<LegendTick> legendTicks(const TransferFunction& tf, int barHeight, i
 
 LegendLayout legendLayout(int width, int height, const TransferFunction& tf,
                           const std::string& title) {
+  const TextFont& font = TextFont::legend();
   LegendLayout l;
-  l.scale = height >= 900 ? 3 : height >= 360 ? 2 : 1;
-  const int s = l.scale, margin = 8 * s, gap = 3 * s;
+  l.scale = height >= 900 ? std::max(3, height / 300) : height >= 360 ? 2 : 1;
+  const int s = l.scale, margin = 8 * s, gap = 3 * s, text = font.height(s);
   l.barWidth = 8 * s;
   l.barHeight = std::max(2, height / 2);
   int labelWidth = 0;
   for (const std::string& t : labelTexts(tf, l.barHeight, s))
-    labelWidth = std::max(labelWidth, textWidth(t, s));
+    labelWidth = std::max(labelWidth, font.width(t, s));
   // The frame is one dot wide around the bar; ticks reach `gap` to the right of it.
   l.barX = width - margin - labelWidth - 2 * gap - l.barWidth - s;
-  l.barY = (height - l.barHeight) / 2 + (kGlyphHeight + 2) * s / 2;
-  const int titleY = l.barY - s - (kGlyphHeight + 3) * s;
-  const int titleX = std::min(l.barX - s, width - margin - textWidth(shownTitle(tf, title), s));
+  l.barY = (height - l.barHeight) / 2 + (text + 2 * s) / 2;
+  const int titleY = l.barY - s - 3 * s - text;
+  const int titleX = std::min(l.barX - s, width - margin - font.width(shownTitle(tf, title), s));
   l.left = std::min(l.barX - s, titleX);
   l.top = titleY;
   l.right = width - margin;
-  l.bottom = l.barY + l.barHeight + s + kGlyphHeight * s / 2 + 1;
+  // The frame's bottom, or the lowest label's, centred on the bar's last row.
+  l.bottom = std::max(l.barY + l.barHeight + s, l.barY + l.barHeight - 1 - font.middle(s) + text);
   return l;
 }
 
 void drawLegend(Image& img, const TransferFunction& tf, const std::string& title,
-                const glm::vec3& background) {
+                const Background& background) {
+  const TextFont& font = TextFont::legend();
   const LegendLayout l = legendLayout(img.width, img.height, tf, title);
   const int s = l.scale, gap = 3 * s;
-  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
+  const glm::vec3 under = background.value_or(glm::vec3(1.0f));  // transparent: as on a page
+  const float luminance = 0.2126f * under.r + 0.7152f * under.g + 0.0722f * under.b;
   const glm::vec4 ink = luminance > 0.5f ? glm::vec4(0, 0, 0, 1) : glm::vec4(1, 1, 1, 1);
   auto set = [&](int x, int y, const glm::vec4& c) {
     if (x >= 0 && y >= 0 && x < img.width && y < img.height) img.at(x, y) = c;
+  };
+  // Anti-aliased text: ink over what lies beneath, by coverage. Over a background the pixel is
+  // composited first, so that the legend stays opaque whatever the frame's alpha.
+  auto blend = [&](int x, int y, float coverage) {
+    if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
+    glm::vec4& p = img.at(x, y);
+    if (coverage >= 1.0f) {
+      p = ink;
+      return;
+    }
+    if (background) p = glm::vec4(glm::vec3(p) + (1.0f - p.a) * *background, 1.0f);
+    p = ink * coverage + p * (1.0f - coverage);
   };
   for (int y = 0; y < l.barHeight; ++y) {
     const double x01 = l.barHeight > 1 ? 1.0 - double(y) / double(l.barHeight - 1) : 0.5;
@@ -128,13 +148,11 @@ void drawLegend(Image& img, const TransferFunction& tf, const std::string& title
     const int ty = l.barY + int(std::lround((1.0 - t.at) * double(l.barHeight - 1)));
     for (int x = right; x < right + gap; ++x)
       for (int d = 0; d < s; ++d) set(x, ty + d - s / 2, ink);
-    if (!t.text.empty())
-      drawText(t.text, right + 2 * gap, ty - kGlyphHeight * s / 2, s,
-               [&](int x, int y) { set(x, y, ink); });
+    if (!t.text.empty()) font.draw(t.text, right + 2 * gap, ty - font.middle(s), s, blend);
   }
   const std::string shown = shownTitle(tf, title);
-  drawText(shown, std::min(l.barX - s, l.right - textWidth(shown, s)),
-           l.barY - s - (kGlyphHeight + 3) * s, s, [&](int x, int y) { set(x, y, ink); });
+  font.draw(shown, std::min(l.barX - s, l.right - font.width(shown, s)),
+            l.barY - s - 3 * s - font.height(s), s, blend);
 }
 
 }  // namespace sm::scene

@@ -12,6 +12,8 @@
 #include "common/log.h"
 #include "scene/color_space.h"
 #include "scene/colormap_data.h"
+#include "scene/control_points.h"
+#include "scene/paraview_presets.h"
 
 namespace sm::scene {
 
@@ -35,7 +37,8 @@ void checkScale(const TransferFunction& tf, const std::string& what) {
 }
 
 glm::dvec4 TransferFunction::lookup(double s) const {
-  if (!std::isfinite(s) || table.empty()) return glm::dvec4(0.0);
+  if (!std::isfinite(s)) return glm::dvec4(glm::dvec3(nanColor), double(nanOpacity));
+  if (table.empty()) return glm::dvec4(0.0);
   const double x = coordinate(s) * double(table.size() - 1);
   size_t i = std::min(size_t(x), table.size() - 1);
   size_t j = std::min(i + 1, table.size() - 1);
@@ -85,32 +88,19 @@ TransferFunction fromBuiltin(const std::string& name, int entries) {
     tf.table = rampOpacity(std::move(tf.table));
     return tf;
   }
-  std::string all;
-  for (const auto& n : builtinColormapNames()) all += (all.empty() ? "" : ", ") + n;
-  throw Error("--colormap: unknown colour map '", name, "' (built-in: ", all,
-              "; or a ParaView .json file)");
+  throw Error("--colormap: no built-in colour map '", name, "'");
 }
 
-// Piecewise function through sorted control points (x, value) sampled at `entries` points of
-// [0, 1], with the colour interpolation that ParaView's ColorSpace names.
-std::vector<glm::dvec3> sampleColors(std::vector<std::pair<double, glm::dvec3>> pts,
-                                     ColorSpace space, int entries) {
-  std::vector<glm::dvec3> out(entries);
-  for (int i = 0; i < entries; ++i) {
-    double x = double(i) / double(entries - 1);
-    size_t k = 0;
-    while (k + 2 < pts.size() && pts[k + 1].first < x) ++k;
-    const auto& [x0, c0] = pts[k];
-    const auto& [x1, c1] = pts[std::min(k + 1, pts.size() - 1)];
-    double f = x1 > x0 ? std::clamp((x - x0) / (x1 - x0), 0.0, 1.0) : 0.0;
-    out[i] = interpolateColor(c0, c1, f, space);
-  }
-  return out;
+bool isBuiltin(const std::string& name) {
+  const std::vector<std::string> names = builtinColormapNames();
+  return name == "greyscale" || std::find(names.begin(), names.end(), name) != names.end();
 }
 
-}  // namespace
-
-namespace {
+std::string lowered(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
 
 std::string presetName(const nlohmann::json& map) {
   return map.is_object() && map.contains("Name") && map["Name"].is_string()
@@ -142,6 +132,100 @@ const nlohmann::json& choosePreset(const nlohmann::json& j, const std::string& s
   throw FileError(src, "has no colour map named '", preset, "' (it holds ", names, ")");
 }
 
+// Values of an array member of a ParaView map, all finite numbers.
+std::vector<double> numbers(const nlohmann::json& j, const char* key, const std::string& src) {
+  std::vector<double> v;
+  if (!j.contains(key)) return v;
+  if (!j[key].is_array()) throw FileError(src, "\"", key, "\" is not an array");
+  for (const auto& x : j[key]) {
+    if (!x.is_number()) throw FileError(src, "\"", key, "\" holds a non-number");
+    double d = x.get<double>();
+    if (!std::isfinite(d)) throw FileError(src, "\"", key, "\" holds a non-finite number");
+    v.push_back(d);
+  }
+  return v;
+}
+
+// Sorts nodes by x (stable: equal x keep their order, a jump) and rescales x from the nodes' own
+// range to [0, 1], as ParaView fits a preset to the data's range.
+template <class Node>
+void normalise(std::vector<Node>& nodes) {
+  std::stable_sort(nodes.begin(), nodes.end(), [](auto& a, auto& b) { return a.x < b.x; });
+  const double x0 = nodes.front().x, x1 = nodes.back().x;
+  for (auto& n : nodes) n.x = x1 > x0 ? (n.x - x0) / (x1 - x0) : 0.0;
+}
+
+std::vector<ColorNode> colorNodes(const nlohmann::json& j, const std::string& src) {
+  std::vector<double> rgb = numbers(j, "RGBPoints", src);
+  if (rgb.size() < 8 || rgb.size() % 4 != 0)
+    throw FileError(src, "\"RGBPoints\" needs at least two (x, r, g, b) points");
+  std::vector<ColorNode> nodes;
+  for (size_t i = 0; i < rgb.size(); i += 4)
+    nodes.push_back({rgb[i], glm::clamp(glm::dvec3(rgb[i + 1], rgb[i + 2], rgb[i + 3]), 0.0, 1.0)});
+  normalise(nodes);
+  return nodes;
+}
+
+std::vector<OpacityNode> opacityNodes(const nlohmann::json& j, const std::string& src) {
+  std::vector<double> op = numbers(j, "Points", src);
+  if (op.size() % 4 != 0)
+    throw FileError(src, "\"Points\" must hold (x, opacity, midpoint, sharpness) quadruples");
+  std::vector<OpacityNode> nodes;
+  for (size_t i = 0; i < op.size(); i += 4) {
+    // As --opacity refuses them: an opacity of 2 is a mistake, not a request for full opacity.
+    if (!(op[i + 1] >= 0.0 && op[i + 1] <= 1.0))
+      throw FileError(src, "\"Points\": opacity ", op[i + 1], " of point ", i / 4 + 1,
+                      " is outside [0, 1]");
+    if (!(op[i + 2] >= 0.0 && op[i + 2] <= 1.0 && op[i + 3] >= 0.0 && op[i + 3] <= 1.0))
+      throw FileError(src, "\"Points\": point ", i / 4 + 1, " has midpoint ", op[i + 2],
+                      " and sharpness ", op[i + 3], " (both must be in [0, 1])");
+    nodes.push_back({op[i], op[i + 1], op[i + 2], op[i + 3]});
+  }
+  if (!nodes.empty()) normalise(nodes);
+  return nodes;
+}
+
+bool hsvWrapOf(const nlohmann::json& j, const std::string& src) {
+  if (!j.contains("HSVWrap")) return false;  // ParaView's maps leave VTK's HSVWrap off
+  const nlohmann::json& w = j["HSVWrap"];
+  if (w.is_boolean()) return w.get<bool>();
+  if (w.is_number()) return w.get<double>() != 0.0;
+  throw FileError(src, "\"HSVWrap\" is not a boolean");
+}
+
+// The table of one ParaView map (an object), sampled as vtkColorTransferFunction::GetTable and
+// vtkPiecewiseFunction::GetTable sample theirs over the points' range.
+TransferFunction fromParaViewMap(const nlohmann::json& j, const std::string& src, int entries) {
+  if (!j.is_object()) throw FileError(src, "not a ParaView colour map (expected an object)");
+  ColorSpace space = ColorSpace::RGB;
+  if (j.contains("ColorSpace")) {
+    if (!j["ColorSpace"].is_string()) throw FileError(src, "\"ColorSpace\" is not a string");
+    space = parseColorSpace(j["ColorSpace"].get<std::string>(), src);
+  }
+  const bool hsvWrap = hsvWrapOf(j, src);
+  const std::vector<ColorNode> colors = colorNodes(j, src);
+  const std::vector<OpacityNode> opacities = opacityNodes(j, src);
+  TransferFunction tf;
+  tf.table.resize(entries);
+  for (int i = 0; i < entries; ++i) {
+    const double x = double(i) / double(entries - 1);
+    // Without "Points" the opacity is a ramp over the range.
+    const double a = opacities.empty() ? x : evaluateOpacity(opacities, x);
+    tf.table[i] = glm::vec4(glm::vec3(evaluateColor(colors, x, space, hsvWrap)), float(a));
+  }
+  std::vector<double> nan = numbers(j, "NanColor", src);
+  if (nan.size() >= 3) tf.nanColor = glm::vec3(nan[0], nan[1], nan[2]);
+  // ParaView's lookup tables carry NanOpacity since 5.10; without it NaN stays transparent.
+  if (j.contains("NanOpacity")) {
+    const nlohmann::json& o = j["NanOpacity"];
+    if (!o.is_number()) throw FileError(src, "\"NanOpacity\" is not a number");
+    const double a = o.get<double>();
+    if (!(a >= 0.0 && a <= 1.0)) throw FileError(src, "\"NanOpacity\" ", a, " is not in [0, 1]");
+    tf.nanOpacity = float(a);
+  }
+  return tf;
+}
+
 }  // namespace
 
 TransferFunction parseParaViewColormap(const std::string& text, const std::string& src, int entries,
@@ -152,69 +236,7 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   } catch (const nlohmann::json::exception& e) {
     throw FileError(src, "not valid JSON: ", e.what());
   }
-  const nlohmann::json& j = choosePreset(parsed, src, preset);
-  if (!j.is_object()) throw FileError(src, "not a ParaView colour map (expected an object)");
-  auto numbers = [&](const char* key) {
-    std::vector<double> v;
-    if (!j.contains(key)) return v;
-    if (!j[key].is_array()) throw FileError(src, "\"", key, "\" is not an array");
-    for (const auto& x : j[key]) {
-      if (!x.is_number()) throw FileError(src, "\"", key, "\" holds a non-number");
-      double d = x.get<double>();
-      if (!std::isfinite(d)) throw FileError(src, "\"", key, "\" holds a non-finite number");
-      v.push_back(d);
-    }
-    return v;
-  };
-  std::vector<double> rgb = numbers("RGBPoints");
-  if (rgb.size() < 8 || rgb.size() % 4 != 0)
-    throw FileError(src, "\"RGBPoints\" needs at least two (x, r, g, b) points");
-  ColorSpace space = ColorSpace::RGB;
-  if (j.contains("ColorSpace")) {
-    if (!j["ColorSpace"].is_string()) throw FileError(src, "\"ColorSpace\" is not a string");
-    space = parseColorSpace(j["ColorSpace"].get<std::string>(), src);
-  }
-  std::vector<std::pair<double, glm::dvec3>> cpts;
-  for (size_t i = 0; i < rgb.size(); i += 4)
-    cpts.push_back({rgb[i], glm::clamp(glm::dvec3(rgb[i + 1], rgb[i + 2], rgb[i + 3]), 0.0, 1.0)});
-  std::stable_sort(cpts.begin(), cpts.end(), [](auto& a, auto& b) { return a.first < b.first; });
-  double x0 = cpts.front().first, x1 = cpts.back().first;
-  for (auto& p : cpts) p.first = x1 > x0 ? (p.first - x0) / (x1 - x0) : 0.0;
-
-  TransferFunction tf;
-  tf.table.resize(entries);
-  auto colors = sampleColors(cpts, space, entries);
-  std::vector<double> op = numbers("Points");
-  if (!op.empty() && op.size() % 4 != 0)
-    throw FileError(src, "\"Points\" must hold (x, opacity, midpoint, sharpness) quadruples");
-  std::vector<std::pair<double, double>> opts;
-  for (size_t i = 0; i < op.size(); i += 4) {
-    // As --opacity refuses them: an opacity of 2 is a mistake, not a request for full opacity.
-    if (!(op[i + 1] >= 0.0 && op[i + 1] <= 1.0))
-      throw FileError(src, "\"Points\": opacity ", op[i + 1], " of point ", i / 4 + 1,
-                      " is outside [0, 1]");
-    opts.push_back({op[i], op[i + 1]});
-  }
-  std::stable_sort(opts.begin(), opts.end(), [](auto& a, auto& b) { return a.first < b.first; });
-  if (!opts.empty()) {
-    double o0 = opts.front().first, o1 = opts.back().first;
-    for (auto& p : opts) p.first = o1 > o0 ? (p.first - o0) / (o1 - o0) : 0.0;
-  }
-  for (int i = 0; i < entries; ++i) {
-    double x = double(i) / double(entries - 1), a = x;
-    if (opts.size() == 1) a = opts[0].second;
-    if (opts.size() >= 2) {
-      size_t k = 0;
-      while (k + 2 < opts.size() && opts[k + 1].first < x) ++k;
-      double xa = opts[k].first, xb = opts[k + 1].first;
-      double f = xb > xa ? std::clamp((x - xa) / (xb - xa), 0.0, 1.0) : 0.0;
-      a = opts[k].second * (1 - f) + opts[k + 1].second * f;
-    }
-    tf.table[i] = glm::vec4(glm::vec3(colors[i]), float(a));
-  }
-  std::vector<double> nan = numbers("NanColor");
-  if (nan.size() >= 3) tf.nanColor = glm::vec3(nan[0], nan[1], nan[2]);
-  return tf;
+  return fromParaViewMap(choosePreset(parsed, src, preset), src, entries);
 }
 
 void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
@@ -249,15 +271,28 @@ TransferFunction makeTransferFunction(const std::string& colormap, int entries) 
   if (fileExtension(colormap) == ".json")
     return parseParaViewColormap(readTextFile(colormap), colormap, entries);
   // FILE.json:NAME picks a map of a preset file that holds several (.JSON too, as for the file).
-  std::string lower = colormap;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string lower = lowered(colormap);
   if (const size_t at = lower.rfind(".json:"); at != std::string::npos) {
     const std::string file = colormap.substr(0, at + 5), name = colormap.substr(at + 6);
     if (name.empty()) throw Error("--colormap: '", colormap, "' names no colour map after ':'");
     return parseParaViewColormap(readTextFile(file), file, entries, name);
   }
-  return fromBuiltin(colormap, entries);
+  // The short names first, as they were; then ParaView's preset names, spelled as ParaView does
+  // or in another case; then the short names in another case ("Viridis").
+  if (isBuiltin(colormap)) return fromBuiltin(colormap, entries);
+  if (const nlohmann::json* preset = findParaViewPreset(colormap))
+    return fromParaViewMap(*preset, "ParaView preset '" + presetName(*preset) + "'", entries);
+  for (const std::string& name : builtinColormapNames())
+    if (lowered(name) == lower) return fromBuiltin(name, entries);
+  std::vector<std::string> all = builtinColormapNames();
+  all.insert(all.end(), paraViewPresetNames().begin(), paraViewPresetNames().end());
+  std::string close;
+  for (const std::string& n : closestNames(colormap, all))
+    close += (close.empty() ? "'" : ", '") + n + "'";
+  throw Error("--colormap: unknown colour map '", colormap, "'",
+              close.empty() ? std::string() : " (closest: " + close + ")",
+              "; give a built-in name, a ParaView preset name (docs/TRANSFER_FUNCTIONS.md lists "
+              "them) or a ParaView .json file");
 }
 
 }  // namespace sm::scene

@@ -30,9 +30,13 @@ struct TransferFunction {
   ScalarScale scale = ScalarScale::Linear;
   double opacityScale = 1.0;
   double unitDistance = 1.0;
-  glm::vec3 nanColor{1.0f, 1.0f, 0.0f};  // from ParaView files; NaN samples are still transparent
+  // NaN and infinite values: this colour at this opacity (per unitDistance, as the table's).
+  // Opacity 0, the default, leaves them transparent; a ParaView map gives the colour (NanColor)
+  // and, where it has one, the opacity (NanOpacity); --nan-color gives both.
+  glm::vec3 nanColor{1.0f, 1.0f, 0.0f};
+  float nanOpacity = 0.0f;
 
-  glm::dvec4 lookup(double s) const;  // rgb + table opacity; (0,0,0,0) for non-finite s
+  glm::dvec4 lookup(double s) const;  // rgb + table opacity; (nanColor, nanOpacity) off-finite
   double extinction(double s) const;  // sigma(s), per world unit
   // Where a finite s falls in the table, in [0, 1] (0.5 for an empty range).
   double coordinate(double s) const;
@@ -48,10 +52,11 @@ void checkScale(const TransferFunction& tf, const std::string& what);
 std::vector<std::string> builtinColormapNames();
 
 // A transfer function from a built-in colour map name ("viridis", "cool-to-warm", "inferno",
-// "plasma", "grayscale", "jet", "turbo") or a ParaView colour-map JSON file (FILE.json:NAME picks
-// a map of a preset file by its "Name"), with `entries` table
+// "plasma", "grayscale", "jet", "turbo"), one of ParaView's preset names ("Cool to Warm",
+// "Viridis (matplotlib)", ...; paraview_presets.h; case ignored), or a ParaView colour-map JSON
+// file (FILE.json:NAME picks a map of a preset file by its "Name"), with `entries` table
 // entries. Opacity is a linear ramp 0..1 unless the JSON gives "Points". Throws sm::Error naming
-// the option or file.
+// the option or file; an unknown name's error suggests the closest names.
 TransferFunction makeTransferFunction(const std::string& colormap, int entries = 256);
 
 // An opacity control point in data values (`--opacity`), as ParaView's opacity editor sets them.
@@ -68,9 +73,10 @@ void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points
 
 // Parses a ParaView colour map (an object, or an array of them as ParaView exports presets: the
 // one whose "Name" is `preset`, or without one the first, warning when there are others) with
-// "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...; an opacity
-// outside [0, 1] is an error), "ColorSpace" (RGB, Lab, HSV, Diverging) and "NanColor". Control
-// points are rescaled to [0, 1].
+// "RGBPoints" (x r g b ...), optional "Points" (x opacity midpoint sharpness ...; an opacity,
+// midpoint or sharpness outside [0, 1] is an error), "ColorSpace" (RGB, Lab, HSV, Diverging, Step,
+// Prolab), "HSVWrap" and "NanColor". Control points are rescaled to [0, 1] and evaluated as VTK
+// evaluates them (control_points.h).
 TransferFunction parseParaViewColormap(const std::string& jsonText, const std::string& sourceName,
                                        int entries = 256, const std::string& preset = "");
 

@@ -28,6 +28,9 @@ expect "--size: '64x64x'" "$sm" render ok.pvtu --size 64x64x --out a.png
 expect "--range: '1,3,'" "$sm" render ok.pvtu --range 1,3, --out a.png
 expect "--eye: '3,3,3,'" "$sm" render ok.pvtu --eye 3,3,3, --out a.png
 expect "--opacity: '0:0,1:1,' ends in ','" "$sm" render ok.pvtu --opacity 0:0,1:1, --out a.png
+expect "--nan-color: '1,0' is not R,G,B or R,G,B,OPACITY" "$sm" render ok.pvtu --nan-color 1,0 --out a.png
+expect "--nan-color: '1,0,2' has 2, outside [0, 1]" "$sm" render ok.pvtu --nan-color 1,0,2 --out a.png
+expect "--nan-color: '1,0,0,x' is not 4 finite numbers" "$sm" render ok.pvtu --nan-color 1,0,0,x --out a.png
 expect "--colormap" "$sm" render ok.pvtu --colormap nope --out a.png
 expect "ok_0.vtu: has no point or cell array 'nope' (point arrays: linear, shock, vortex, density; cell data: none)" "$sm" render ok.pvtu --field nope --out a.png
 expect "--out" "$sm" render ok.pvtu --out a.jpg
@@ -92,6 +95,9 @@ expect "nan.vtu: field 'f' has no finite value in step 0" "$sm" render nan.vtu -
 expect "--early-termination" "$sm" render ok.pvtu --early-termination 2 --out a.png
 expect "--early-termination" "$sm" render ok.pvtu --early-termination 0 --out a.png
 expect "--background" "$sm" render ok.pvtu --background 2,-1,0 --out a.png
+expect "--background" "$sm" render ok.pvtu --background clear --out a.png
+expect "--background transparent: --out 'a.pfm' is a PFM" "$sm" render ok.pvtu --background transparent --out a.pfm
+expect "--background transparent: for render only" "$sm" view ok.pvtu --background transparent --headless --frames 1
 expect "--clusters" "$sm" render ok.pvtu --clusters 0 --out a.png
 expect "--range" "$sm" render ok.pvtu --range -1e300,1e300 --out a.png
 expect "--opacity-scale" "$sm" render ok.pvtu --opacity-scale nan --out a.png

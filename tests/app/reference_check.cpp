@@ -3,7 +3,8 @@
 //                 [time-step]
 // Renders MESH with the double-precision CPU reference (Grid mode: the same samples as the GPU),
 // clipped by the planes of REFERENCE_CHECK_CLIP, with the opacity points of
-// REFERENCE_CHECK_OPACITY and on a log scale if REFERENCE_CHECK_LOG is 1,
+// REFERENCE_CHECK_OPACITY, on a log scale if REFERENCE_CHECK_LOG is 1, with a parallel projection
+// of scale REFERENCE_CHECK_PARALLEL_SCALE if set,
 // composites over black like `render --background 0,0,0`, and compares with IMAGE.
 #include <algorithm>
 #include <cstdio>
@@ -68,6 +69,11 @@ int main(int argc, char** argv) {
     cam.at = {std::atof(argv[14]), std::atof(argv[15]), std::atof(argv[16])};
     cam.up = {std::atof(argv[17]), std::atof(argv[18]), std::atof(argv[19])};
     cam.fovyDeg = std::atof(argv[20]);
+    // A parallel projection of this scale, as `render --parallel-scale` takes it.
+    if (const char* scale = std::getenv("REFERENCE_CHECK_PARALLEL_SCALE")) {
+      cam.parallel = true;
+      cam.parallelScale = std::atof(scale);
+    }
     double maxRmse = argc > 21 ? std::atof(argv[21]) : 1.0 / 255.0;
     ref::RenderSettings rs;
     rs.dt = std::atof(argv[6]);

@@ -85,6 +85,10 @@ COLORMAPS = {
                  "Points": [0, 0.2, 0.5, 0]},
     "rgb.json": {"ColorSpace": "RGB", "RGBPoints": [0, 0, 0, 1, 1, 1, 0, 0],
                  "Points": [0, 0, 0.5, 0, 0.4, 0.8, 0.5, 0, 1, 0.1, 0.5, 0]},
+    "step.json": {"ColorSpace": "Step", "RGBPoints": [0, 1, 0, 0, 0.5, 0, 1, 0, 1, 0, 0, 1],
+                  "Points": [0, 0, 0.3, 0.7, 1, 1, 0.5, 1]},
+    "prolab.json": {"ColorSpace": "Prolab", "HSVWrap": 1,
+                    "RGBPoints": [0, 1, 0, 0, 0.5, 0.2, 0.9, 0.1, 1, 0, 0, 1]},
 }
 
 

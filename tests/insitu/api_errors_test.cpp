@@ -216,7 +216,7 @@ TEST_F(InsituErrors, Settings) {
       },
       "table entries must be in [0, 1], not 2");
   expectSettingError([](auto& s) { s.colormap = "no-such-map"; },
-                     "render: colormap: unknown colour map 'no-such-map' (built-in: ");
+                     "render: colormap: unknown colour map 'no-such-map'; give a built-in name");
   expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); }, "must be finite");
   expectSettingError(
       [](auto& s) {

@@ -28,4 +28,15 @@ grep -q 'shellmarch::insitu::Renderer::render' <<<"$exported" ||
 "$cmake" --build "$work/build" || fail "building the consumer"
 "$work/build/consumer" "$work/consumer.png" || fail "running the consumer"
 [ -s "$work/consumer.png" ] || fail "the consumer wrote no image"
-echo "install_check: passed ($lib)"
+# The same program built the Makefile way, through pkg-config.
+pc_dir=$(dirname "$(find "$prefix" -name shellmarch-insitu.pc | head -n 1)")
+[ -f "$pc_dir/shellmarch-insitu.pc" ] || fail "no shellmarch-insitu.pc under $prefix"
+flags=$(PKG_CONFIG_PATH=$pc_dir pkg-config --cflags --libs shellmarch-insitu) ||
+  fail "pkg-config --cflags --libs shellmarch-insitu"
+# shellcheck disable=SC2086
+"$cxx" -std=c++20 -O1 "$consumer/main.cpp" $flags -Wl,-rpath,"$(dirname "$lib")" \
+  -o "$work/consumer-pc" || fail "building the consumer with pkg-config ($flags)"
+"$work/consumer-pc" "$work/consumer-pc.png" || fail "running the pkg-config consumer"
+cmp -s "$work/consumer.png" "$work/consumer-pc.png" ||
+  fail "the pkg-config consumer's image differs from the CMake consumer's"
+echo "install_check: passed ($lib; pkg-config: $flags)"

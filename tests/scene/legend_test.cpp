@@ -1,6 +1,7 @@
 // The colour legend of `render --legend`: it draws only inside its layout, its bar runs from the
 // colour map's first entry at the bottom to its last at the top, its ink follows the background,
-// and its labels move the bar to make room for them.
+// its labels move the bar to make room for them, and its text (anti-aliased, UTF-8) shows a
+// field's name as the file spells it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "scene/bitmap_font.h"
 #include "scene/legend.h"
+#include "scene/text_font.h"
 
 namespace sm::scene {
 namespace {
@@ -85,21 +87,39 @@ TEST(Legend, EveryScaleStaysInsideItsLayout) {
 TEST(Legend, InkIsWhiteOnDarkAndBlackOnLight) {
   const TransferFunction tf = viridis(0.0, 1.0);
   Image dark = filled(256, 192), light = filled(256, 192);
-  drawLegend(dark, tf, "t", glm::vec3(0.1f, 0.1f, 0.12f));
-  drawLegend(light, tf, "t", glm::vec3(1.0f));
-  int ink = 0;
+  const glm::vec3 darkBg(0.1f, 0.1f, 0.12f), lightBg(1.0f);
+  drawLegend(dark, tf, "t", darkBg);
+  drawLegend(light, tf, "t", lightBg);
+  int ink = 0, blended = 0;
   for (size_t i = 0; i < dark.pixels.size(); ++i) {
     if (dark.pixels[i] == glm::vec4(1.0f)) {
       ++ink;
       EXPECT_EQ(light.pixels[i], glm::vec4(0, 0, 0, 1));
-    } else {
-      EXPECT_EQ(light.pixels[i], dark.pixels[i]);  // the bar and the untouched image agree
+    } else if (dark.pixels[i] != light.pixels[i]) {
+      // Text's edges: the ink by its coverage over the pixel composited over the background,
+      // opaque; the same coverage on either background.
+      ++blended;
+      const glm::vec3 overDark = glm::vec3(kUntouched) + (1.0f - kUntouched.a) * darkBg,
+                      overLight = glm::vec3(kUntouched) + (1.0f - kUntouched.a) * lightBg;
+      for (int c = 0; c < 3; ++c) {
+        const float byDark = (dark.pixels[i][c] - overDark[c]) / (1.0f - overDark[c]),
+                    byLight = 1.0f - light.pixels[i][c] / overLight[c];
+        EXPECT_GT(byDark, 0.0f) << i;
+        EXPECT_LT(byDark, 1.0f) << i;
+        EXPECT_NEAR(byDark, byLight, 1e-5) << i;
+      }
+      EXPECT_EQ(dark.pixels[i].a, 1.0f);
+      EXPECT_EQ(light.pixels[i].a, 1.0f);
     }
   }
-  // The title's dots at least, besides the frame, ticks and labels.
-  int titleDots = 0;
-  for (int r = 0; r < kGlyphHeight; ++r) titleDots += __builtin_popcount(glyph('t')[r]);
-  EXPECT_GT(ink, titleDots);
+  // More than the frame: the text is there too.
+  const LegendLayout l = legendLayout(256, 192, tf, "t");
+  const int frame =
+      (l.barWidth + 2 * l.scale) * (l.barHeight + 2 * l.scale) - l.barWidth * l.barHeight;
+  EXPECT_GT(ink, frame);
+  if (TextFont::legend().trueType()) {
+    EXPECT_GT(blended, 10);  // anti-aliased
+  }
 }
 
 TEST(Legend, WiderLabelsMoveTheBarLeftAndLargeImagesScaleTheFont) {
@@ -110,6 +130,8 @@ TEST(Legend, WiderLabelsMoveTheBarLeftAndLargeImagesScaleTheFont) {
   EXPECT_EQ(legendLayout(256, 192, viridis(0, 1), "p").scale, 1);
   EXPECT_EQ(narrow.scale, 2);
   EXPECT_EQ(legendLayout(1024, 1024, viridis(0, 1), "p").scale, 3);
+  EXPECT_EQ(legendLayout(4096, 3000, viridis(0, 1), "p").scale, 10);  // grows with the image
+  EXPECT_GT(legendLineHeight(10), 4 * legendLineHeight(2));
 }
 
 TEST(Legend, ATinyImageIsClippedNotOverrun) {
@@ -182,7 +204,7 @@ TEST(LegendTicks, ManyDecadesLabelEveryNthAndNeverOverlap) {
   for (int height : {60, 120, 480}) {
     for (int scale : {1, 2}) {
       const auto t = legendTicks(logViridis(1e-15, 1e15), height, scale);
-      const double line = double((kGlyphHeight + 2) * scale) / double(height - 1);
+      const double line = double(legendLineHeight(scale)) / double(height - 1);
       double last = -1.0;
       int labelled = 0;
       for (const LegendTick& k : t) {
@@ -197,18 +219,20 @@ TEST(LegendTicks, ManyDecadesLabelEveryNthAndNeverOverlap) {
       // Decades are (height - 1) / 30 pixels apart: when labels skip some, those are ticks alone
       // if that is 3 dots or more, and left out if less.
       const double apart = double(height - 1) / 30.0;
-      const bool skips = apart < double((kGlyphHeight + 2) * scale);
+      const bool skips = apart < double(legendLineHeight(scale));
       EXPECT_EQ(t.size() > size_t(labelled), skips && apart >= 3.0 * scale)
           << height << " x" << scale;
     }
   }
-  // Decades 119 / 30 pixels apart, labels 9: every third decade is labelled, those multiples of
-  // three that clear the ends' labels; the others are ticks alone.
+  // Decades about (L + 1) / 2 pixels apart, labels L = legendLineHeight(1) apart: every second
+  // decade is labelled, the even ones that clear the ends' labels; the others are ticks alone.
+  const int line = legendLineHeight(1), bar = 30 * (line + 1) / 2 + 1;
   std::vector<std::string> labels;
-  for (const std::string& text : texts(legendTicks(logViridis(1e-15, 1e15), 120, 1)))
+  for (const std::string& text : texts(legendTicks(logViridis(1e-15, 1e15), bar, 1)))
     if (!text.empty()) labels.push_back(text);
-  EXPECT_EQ(labels, (std::vector<std::string>{"1e-15", "1e-12", "1e-09", "1e-06", "0.001", "1",
-                                              "1000", "1e+06", "1e+09", "1e+12", "1e+15"}));
+  EXPECT_EQ(labels, (std::vector<std::string>{"1e-15", "1e-12", "1e-10", "1e-08", "1e-06", "0.0001",
+                                              "0.01", "1", "100", "1e+04", "1e+06", "1e+08",
+                                              "1e+10", "1e+12", "1e+15"}));
 }
 
 // The drawn legend has a tick at each mark's row.
@@ -268,13 +292,57 @@ TEST(Legend, TheTitleKeepsItsCase) {
   Image lower = filled(320, 240), upper = filled(320, 240);
   drawLegend(lower, tf, "p", glm::vec3(0.0f));
   drawLegend(upper, tf, "P", glm::vec3(0.0f));
-  int differ = 0;
-  for (size_t i = 0; i < lower.pixels.size(); ++i) differ += lower.pixels[i] != upper.pixels[i];
   const LegendLayout l = legendLayout(320, 240, tf, "p");
-  int expected = 0;  // the dots where the two glyphs differ, at the legend's scale
-  for (int r = 0; r < kGlyphHeight; ++r)
-    expected += __builtin_popcount(glyph('p')[r] ^ glyph('P')[r]);
-  EXPECT_EQ(differ, expected * l.scale * l.scale);
+  int differ = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x)
+      if (lower.at(x, y) != upper.at(x, y)) {
+        ++differ;
+        EXPECT_LT(y, l.top + TextFont::legend().height(l.scale)) << "only the title differs";
+      }
+  EXPECT_GT(differ, 10);
+}
+
+// A field named in Greek or with a degree sign reads as it is spelt, not as '?'.
+TEST(Legend, GreekAndDegreeSignTitlesDrawAsGlyphs) {
+  if (!TextFont::legend().trueType()) GTEST_SKIP() << "no TrueType font: the 5x7 font's '?'";
+  const TransferFunction tf = viridis(0.0, 1.0);
+  for (auto [name, ascii] : {std::pair{"\xCF\x81", "?"},
+                             {"T [\xC2\xB0"
+                              "C]",
+                              "T [?C]"}}) {
+    Image utf8 = filled(320, 240), question = filled(320, 240);
+    drawLegend(utf8, tf, name, glm::vec3(0.0f));
+    drawLegend(question, tf, ascii, glm::vec3(0.0f));
+    int differ = 0;
+    for (size_t i = 0; i < utf8.pixels.size(); ++i) differ += utf8.pixels[i] != question.pixels[i];
+    EXPECT_GT(differ, 10) << ascii;
+  }
+}
+
+// Over a transparent background the text is black (as on a page) and blended "over" the frame:
+// its edges keep part of what lies beneath, alpha included; the bar and frame are opaque.
+TEST(Legend, OverATransparentBackgroundTextIsBlackAndBlendedOver) {
+  const TransferFunction tf = viridis(0.0, 1.0);
+  Image img(320, 240);  // all transparent
+  drawLegend(img, tf, "density", std::nullopt);
+  const LegendLayout l = legendLayout(320, 240, tf, "density");
+  int black = 0, partial = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const glm::vec4& p = img.at(x, y);
+      if (p == glm::vec4(0.0f)) continue;
+      EXPECT_TRUE(inside(l, x, y)) << x << "," << y;
+      black += p == glm::vec4(0, 0, 0, 1);
+      if (p.a < 1.0f) {
+        ++partial;
+        EXPECT_EQ(glm::vec3(p), glm::vec3(0.0f));  // black ink over nothing: black, part opaque
+      }
+    }
+  EXPECT_GT(black, l.barHeight * 2);  // the frame's sides at least
+  if (TextFont::legend().trueType()) {
+    EXPECT_GT(partial, 10);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // table entries, preset files of several maps, and one-line errors.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "common/error.h"
@@ -37,6 +38,28 @@ TEST(ParaViewColormap, ControlPointsAreInterpolatedOverTheTable) {
   TransferFunction gray = parseParaViewColormap(kGray, "m.json", 257);
   EXPECT_FLOAT_EQ(gray.table[64].a, 0.25f);
   EXPECT_FLOAT_EQ(gray.table[64].g, 0.25f);
+}
+
+// NaN takes the map's NanColor at its NanOpacity; without NanOpacity it stays transparent.
+TEST(ParaViewColormap, NanColorAndNanOpacity) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  TransferFunction plain = parseParaViewColormap(
+      R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1], "NanColor": [0, 0, 1]})", "m.json", 16);
+  EXPECT_EQ(plain.lookup(nan), glm::dvec4(0, 0, 1, 0));
+  TransferFunction seen = parseParaViewColormap(
+      R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1], "NanColor": [0, 1, 0], "NanOpacity": 0.25})",
+      "m.json", 16);
+  EXPECT_EQ(seen.lookup(nan), glm::dvec4(0, 1, 0, 0.25));
+  EXPECT_EQ(seen.lookup(std::numeric_limits<double>::infinity()), glm::dvec4(0, 1, 0, 0.25));
+  seen.unitDistance = 0.5;
+  EXPECT_DOUBLE_EQ(seen.extinction(nan), 0.5);
+  EXPECT_EQ(seen.lookup(1.0), glm::dvec4(1, 1, 1, 1));  // finite values are the table's
+  EXPECT_NE(errorOf(R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1], "NanOpacity": 2})")
+                .find("\"NanOpacity\" 2 is not in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"RGBPoints": [0, 0, 0, 0, 1, 1, 1, 1], "NanOpacity": [1]})")
+                .find("\"NanOpacity\" is not a number"),
+            std::string::npos);
 }
 
 TEST(ParaViewColormap, APresetFileGivesTheMapItNamesOrTheFirstWithAWarning) {

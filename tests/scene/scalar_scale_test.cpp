@@ -34,7 +34,8 @@ TEST(ScalarScale, LogCoordinatesAreDecadesOfTheRange) {
   // The grayscale ramp's opacity at a third of the way: entry 85 of 256 exactly.
   EXPECT_NEAR(tf.lookup(10.0).a, 1.0 / 3.0, 1e-7);
   EXPECT_EQ(tf.lookup(-1.0), glm::dvec4(tf.table.front()));
-  EXPECT_EQ(tf.lookup(NAN), glm::dvec4(0.0));  // non-finite stays transparent
+  // Non-finite: the NaN colour, transparent unless a NaN opacity is given.
+  EXPECT_EQ(tf.lookup(NAN), glm::dvec4(glm::dvec3(tf.nanColor), 0.0));
   // The linear scale is unchanged.
   TransferFunction lin = tf;
   lin.scale = ScalarScale::Linear;

@@ -1,6 +1,7 @@
 // Camera controller maths, without a window: orbit keeps the distance to the target, pan moves eye
-// and target together, zoom changes the distance only, and the pixel mappings make the object
-// follow the cursor.
+// and target together, zoom changes the distance only (the parallel scale, in parallel
+// projection), the projection toggle keeps the size at the target, and the pixel mappings make
+// the object follow the cursor.
 #include <cmath>
 #include <numbers>
 
@@ -37,8 +38,7 @@ glm::dvec2 project(const scene::Camera& c, const glm::dvec3& p, int w, int h) {
   const glm::dvec3 d = p - f.eye;
   const double z = glm::dot(d, f.forward);
   const double u = glm::dot(d, f.right) / z, v = glm::dot(d, f.upOrtho) / z;
-  return {(u / (f.tanHalfFovy * f.aspect) + 1) * w / 2 - 0.5,
-          (1 - v / f.tanHalfFovy) * h / 2 - 0.5};
+  return {(u / (f.halfHeight * f.aspect) + 1) * w / 2 - 0.5, (1 - v / f.halfHeight) * h / 2 - 0.5};
 }
 
 TEST(CameraController, OrbitKeepsDistanceAndTarget) {
@@ -177,6 +177,68 @@ TEST(TurnAbout, IsTheViewersYawAndClosesAfterAWholeTurn) {
   const scene::Camera tt = scene::turnAbout(tilted, 1.0);
   EXPECT_NEAR(glm::dot(tt.eye - c.at, axis), glm::dot(c.eye - c.at, axis), 1e-12);
   EXPECT_NEAR(dist(tt), dist(c), 1e-12);
+}
+
+// Pixel coordinates of a world point in a parallel view: its offset from the eye in the image
+// plane, in units of the parallel scale.
+glm::dvec2 projectParallel(const scene::Camera& c, const glm::dvec3& p, int w, int h) {
+  scene::CameraFrame f = scene::cameraFrame(c, w, h);
+  const glm::dvec3 d = p - f.eye;
+  const double u = glm::dot(d, f.right), v = glm::dot(d, f.upOrtho);
+  return {(u / (f.halfHeight * f.aspect) + 1) * w / 2 - 0.5, (1 - v / f.halfHeight) * h / 2 - 0.5};
+}
+
+scene::Camera parallelCamera() {
+  scene::Camera c = testCamera();
+  c.parallel = true;
+  c.parallelScale = 1.5;
+  return c;
+}
+
+TEST(CameraController, ParallelZoomChangesTheScaleNotTheEye) {
+  CameraController cc(parallelCamera());
+  cc.zoomWheel(2);  // in: the view holds less
+  EXPECT_NEAR(cc.camera().parallelScale, 1.5 * 0.81, 1e-15);
+  EXPECT_EQ(cc.camera().eye, parallelCamera().eye);
+  cc.zoomPixels(50, 100);  // drag down: out
+  EXPECT_NEAR(cc.camera().parallelScale, 1.5 * 0.81 * std::exp(1.0), 1e-12);
+  EXPECT_EQ(cc.camera().eye, parallelCamera().eye);
+  cc.zoom(0);  // ignored, as in perspective
+  cc.zoom(-1);
+  EXPECT_NEAR(cc.camera().parallelScale, 1.5 * 0.81 * std::exp(1.0), 1e-12);
+}
+
+// A pan by N pixels moves what is under the cursor by N pixels, in a parallel view at any depth.
+TEST(CameraController, ParallelPanFollowsTheCursor) {
+  const int w = 200, h = 100;
+  CameraController cc(parallelCamera());
+  const glm::dvec3 p = {0.9, 0.4, 0.1};
+  const glm::dvec2 before = projectParallel(cc.camera(), p, w, h);
+  cc.panPixels(12, -7, h);
+  const glm::dvec2 after = projectParallel(cc.camera(), p, w, h);
+  EXPECT_NEAR(after.x - before.x, 12, 1e-9);
+  EXPECT_NEAR(after.y - before.y, -7, 1e-9);
+}
+
+// The point looked at keeps its size on screen: the parallel scale is the perspective view's
+// half height at `at`, and back the eye moves to the distance where that holds; twice is the
+// identity.
+TEST(CameraController, ToggleProjectionKeepsTheSizeAtTheTarget) {
+  const scene::Camera start = testCamera();
+  CameraController cc(start);
+  const double d = dist(start), tanHalf = std::tan(40.0 * std::numbers::pi / 360);
+  cc.toggleProjection();
+  EXPECT_TRUE(cc.camera().parallel);
+  EXPECT_NEAR(cc.camera().parallelScale, d * tanHalf, 1e-12);
+  EXPECT_EQ(cc.camera().eye, start.eye);
+  cc.zoom(0.5);  // the parallel scale halves: back in perspective, half the distance
+  cc.toggleProjection();
+  EXPECT_FALSE(cc.camera().parallel);
+  EXPECT_NEAR(dist(cc.camera()), 0.5 * d, 1e-12);
+  EXPECT_NEAR(glm::length(direction(cc.camera()) - direction(start)), 0, 1e-12);
+  cc.toggleProjection();
+  cc.toggleProjection();
+  EXPECT_NEAR(dist(cc.camera()), 0.5 * d, 1e-12);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 // Scripts and input handling, without a window: a script's commands become the events a user's
 // mouse and keys would, frame by frame, and those events change the state as the controls say.
+#include <cmath>
+#include <numbers>
+
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
@@ -193,6 +196,29 @@ TEST(ViewerInput, TheGKeyTogglesTheLogScale) {
   EXPECT_EQ(keyFromName("g"), Key::ToggleLogScale);
   EXPECT_FALSE(keyRepeats(Key::ToggleLogScale));
   EXPECT_NE(controlsHelp().find("  g  "), std::string::npos);
+}
+
+// p switches to a parallel projection showing `at` at the size it had, and back; the wheel then
+// changes the parallel scale.
+TEST(ViewerInput, ThePKeyTogglesTheProjection) {
+  InputHandler h(startState().camera(), choices());
+  LocalRequests local;
+  ViewState s = startState();
+  const double d = glm::length(s.eye - s.at);
+  EXPECT_EQ(s.parallel, 0u);
+  play("key p\n", h, s, local);
+  EXPECT_EQ(s.parallel, 1u);
+  EXPECT_NEAR(s.parallelScale, d * std::tan(s.fovyDeg * std::numbers::pi / 360), 1e-12);
+  const double scale = s.parallelScale;
+  play("scroll 1\n", h, s, local);
+  EXPECT_NEAR(s.parallelScale, 0.9 * scale, 1e-12);
+  EXPECT_NEAR(glm::length(s.eye - s.at), d, 1e-12);
+  play("key p\n", h, s, local);
+  EXPECT_EQ(s.parallel, 0u);
+  EXPECT_NEAR(glm::length(s.eye - s.at), 0.9 * d, 1e-12);
+  EXPECT_EQ(keyFromName("p"), Key::ToggleProjection);
+  EXPECT_FALSE(keyRepeats(Key::ToggleProjection));
+  EXPECT_NE(controlsHelp().find("  p  "), std::string::npos);
 }
 
 // Held down, a stepping key steps again with each auto-repeat; space would toggle play on and

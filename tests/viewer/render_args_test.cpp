@@ -55,6 +55,13 @@ TEST(RenderArgs, CarryTheStateExactlyAndOnlyTheFlagsThatApply) {
             1);
   args = renderArgs(s, 64, 48, {f, map, tf, none, noPlanes, false, true});
   EXPECT_TRUE(has(args, "--integration=sampled"));
+  EXPECT_EQ(std::count_if(args.begin(), args.end(),
+                          [](const std::string& a) { return a.rfind("--parallel", 0) == 0; }),
+            0);
+  s.parallel = 1;
+  s.parallelScale = 0.1;
+  args = renderArgs(s, 64, 48, {f, map, tf, none, noPlanes, false});
+  EXPECT_TRUE(has(args, "--parallel-scale=0.10000000000000001"));  // implies --parallel
 }
 
 TEST(ScreenImage, ScreenshotsAreNumberedBeforeTheExtension) {

@@ -366,7 +366,7 @@ void runAccuracyBench(const AccuracyArgs& a) {
   report["load_average_after"] = machineJson()["load_average"];
   if (!a.json.empty()) writeJsonFile(a.json, report);
   if (!a.markdown.empty()) writeTextFile(a.markdown, markdown);
-  if (!a.plot.empty()) writeParetoPlot(a.plot, panels, 2);
+  if (!a.plot.empty()) writeErrorTimePlot(a.plot, panels, 2, defaultPython());
 }
 
 }  // namespace

@@ -60,7 +60,8 @@ uint64_t parseCount(const std::string& option, const std::string& item) {
 nlohmann::json machineJson() {
   nlohmann::json m;
   m["cpu"] = procField("/proc/cpuinfo", "model name");
-  m["logical_cores"] = hardwareThreads();
+  m["logical_cores"] = machineThreads();
+  m["threads"] = hardwareThreads();
   std::string mem = procField("/proc/meminfo", "MemTotal");  // "24567 kB"
   m["memory_bytes"] = uint64_t(std::strtoull(mem.c_str(), nullptr, 10)) * 1024;
   double load[3] = {0, 0, 0};

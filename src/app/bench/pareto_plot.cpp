@@ -6,6 +6,11 @@
 
 #include <glm/vec4.hpp>
 
+#include <nlohmann/json.hpp>
+
+#include "app/bench/bench_common.h"
+#include "common/file_util.h"
+#include "common/log.h"
 #include "scene/bitmap_font.h"
 #include "scene/image.h"
 
@@ -139,6 +144,33 @@ void writeParetoPlot(const std::string& path, const std::vector<PlotPanel>& pane
   for (size_t i = 0; i < panels.size(); ++i)
     drawPanel(cv, int(i) % columns * kPanelW, rowTop[i / size_t(columns)], panels[i]);
   scene::writePng(path, cv.img, glm::vec3(1.0f));
+}
+
+std::string writeErrorTimePlot(const std::string& path, const std::vector<PlotPanel>& panels,
+                               int columns, const std::string& python) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const PlotPanel& p : panels) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const PlotPoint& q : p.points)
+      points.push_back({{"tag", q.tag}, {"label", q.label}, {"ms", q.ms}, {"error", q.error}});
+    j.push_back({{"title", p.title}, {"points", points}, {"front", paretoFront(p.points)}});
+  }
+  const std::string panelsPath = path + ".panels.json", result = path + ".plot.json",
+                    logPath = path + ".plot.log";
+  writeJsonFile(panelsPath, j);
+  std::remove(path.c_str());  // a plot of an earlier run is not this one
+  const PeerRun run =
+      runPeer({python,
+               "pareto_plot.py",
+               {"--panels", panelsPath, "--out", path, "--columns", std::to_string(columns)},
+               result,
+               logPath});
+  for (const std::string& f : {panelsPath, result, logPath}) std::remove(f.c_str());
+  if (run.ok && fileExists(path)) return "matplotlib";
+  log::warning("plot ", path, ": matplotlib could not draw it (", run.error,
+               "); drawing the built-in plot");
+  writeParetoPlot(path, panels, columns);
+  return "built-in";
 }
 
 }  // namespace sm::app::bench

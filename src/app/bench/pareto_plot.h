@@ -27,4 +27,10 @@ std::vector<size_t> paretoFront(const std::vector<PlotPoint>& points);
 // Panels in rows of `columns`.
 void writeParetoPlot(const std::string& path, const std::vector<PlotPanel>& panels, int columns);
 
+// The same plot drawn by matplotlib (pareto_plot.py beside the tool, run by `python`): labelled
+// axes with units, log scales where values span decades, a legend; where Python or matplotlib is
+// missing, writeParetoPlot's with one warning. Returns "matplotlib" or "built-in".
+std::string writeErrorTimePlot(const std::string& path, const std::vector<PlotPanel>& panels,
+                               int columns, const std::string& python);
+
 }  // namespace sm::app::bench

@@ -28,6 +28,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "The two tracers (ray queries, ray tracing pipeline) taking turns on one view: frames, "
        "stages and throughput of each, their ratio per round, and whether their images agree",
        configureTracerBench},
+      {"png",
+       "PNG encoding of a rendered frame: stb_image_write against libpng at several zlib levels, "
+       "bytes and time to encode",
+       configurePngBench},
   };
   return all;
 }

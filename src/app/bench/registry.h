@@ -27,5 +27,6 @@ void configureAccuracyBench(CLI::App& cmd);  // bench_accuracy.cpp
 void configureFeatureBench(CLI::App& cmd);   // bench_features.cpp
 void configureCountBench(CLI::App& cmd);     // bench_counts.cpp
 void configureTracerBench(CLI::App& cmd);    // bench_tracers.cpp
+void configurePngBench(CLI::App& cmd);       // bench_png.cpp
 
 }  // namespace sm::app::bench

@@ -50,9 +50,27 @@ void CameraController::pan(double right, double up) {
 
 void CameraController::zoom(double factor) {
   if (!(factor > 0) || !std::isfinite(factor)) return;
+  if (cam_.parallel) {
+    const double scale = cam_.parallelScale * factor;
+    if (scale > 0 && scale < 1e30) cam_.parallelScale = scale;
+    return;
+  }
   const glm::dvec3 offset = (cam_.eye - cam_.at) * factor;
   if (!(glm::length(offset) > 0)) return;  // never collapse onto `at`
   cam_.eye = cam_.at + offset;
+}
+
+void CameraController::toggleProjection() {
+  const double tanHalf = std::tan(glm::radians(cam_.fovyDeg) * 0.5);
+  if (!cam_.parallel) {
+    cam_.parallelScale = distance() * tanHalf;
+    cam_.parallel = true;
+    return;
+  }
+  const glm::dvec3 offset = cam_.eye - cam_.at;
+  const double d = glm::length(offset);
+  if (d > 0) cam_.eye = cam_.at + offset * (cam_.parallelScale / tanHalf / d);
+  cam_.parallel = false;
 }
 
 void CameraController::orbitPixels(double dx, double dy, int height) {
@@ -63,8 +81,9 @@ void CameraController::orbitPixels(double dx, double dy, int height) {
 
 void CameraController::panPixels(double dx, double dy, int height) {
   // World units per pixel on the plane through `at` facing the camera.
-  const double perPixel =
-      2.0 * distance() * std::tan(glm::radians(cam_.fovyDeg) * 0.5) / std::max(height, 1);
+  const double halfHeight =
+      cam_.parallel ? cam_.parallelScale : distance() * std::tan(glm::radians(cam_.fovyDeg) * 0.5);
+  const double perPixel = 2.0 * halfHeight / std::max(height, 1);
   pan(-dx * perPixel, dy * perPixel);
 }
 

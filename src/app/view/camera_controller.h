@@ -1,4 +1,5 @@
-// Turntable camera control for the viewer: orbit about the point looked at, pan, zoom. The up
+// Turntable camera control for the viewer: orbit about the point looked at, pan, zoom, and the
+// switch between perspective and parallel projection. The up
 // vector stays the user's (the world's) up, as in ParaView's default interaction, and the
 // elevation stops short of it, so the view never flips or rolls.
 //
@@ -28,7 +29,13 @@ class CameraController {
   // (orthogonalised) up directions.
   void pan(double right, double up);
   // Multiplies the distance from at to the eye by `factor` (> 0); the direction is unchanged.
+  // With a parallel projection, where distance changes nothing on screen, multiplies the parallel
+  // scale instead (as ParaView's zoom does).
   void zoom(double factor);
+  // Perspective <-> parallel, keeping the size on screen of what lies at `at`: the parallel scale
+  // becomes the perspective half height there, distance * tan(fovy / 2); back, the eye moves
+  // along the viewing direction to the distance at which that holds again.
+  void toggleProjection();
 
   // The same in window pixels for a viewport `height` pixels high.
   void orbitPixels(double dx, double dy, int height);

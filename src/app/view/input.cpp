@@ -17,13 +17,17 @@ int cycle(int value, int delta, size_t count) {
 
 Key keyFromName(const std::string& name) {
   static const std::map<std::string, Key> keys = {
-      {"right", Key::NextStep},   {"space", Key::TogglePlay}, {"left", Key::PrevStep},
-      {"up", Key::MoreOpaque},    {"down", Key::LessOpaque},  {"f", Key::NextField},
-      {"c", Key::NextColormap},   {"[", Key::FinerStep},      {"]", Key::CoarserStep},
-      {"r", Key::ResetView},      {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
-      {"l", Key::ToggleLegend},   {"h", Key::Help},           {"q", Key::Quit},
-      {"x", Key::ToggleCut},      {",", Key::CutNearer},      {".", Key::CutFarther},
-      {"g", Key::ToggleLogScale}, {"escape", Key::Quit}};
+      {"right", Key::NextStep},   {"space", Key::TogglePlay},
+      {"left", Key::PrevStep},    {"up", Key::MoreOpaque},
+      {"down", Key::LessOpaque},  {"f", Key::NextField},
+      {"c", Key::NextColormap},   {"[", Key::FinerStep},
+      {"]", Key::CoarserStep},    {"r", Key::ResetView},
+      {"s", Key::Screenshot},     {"o", Key::ToggleOverlay},
+      {"l", Key::ToggleLegend},   {"h", Key::Help},
+      {"q", Key::Quit},           {"x", Key::ToggleCut},
+      {",", Key::CutNearer},      {".", Key::CutFarther},
+      {"g", Key::ToggleLogScale}, {"p", Key::ToggleProjection},
+      {"escape", Key::Quit}};
   auto it = keys.find(name);
   return it == keys.end() ? Key::None : it->second;
 }
@@ -65,6 +69,8 @@ std::string controlsHelp() {
          "                                point looked at, facing the camera; again: no cut\n"
          "  , / .                         move the cut nearer / farther\n"
          "  g                             log scale on / off (fields with a positive range)\n"
+         "  p                             perspective / parallel projection (the wheel then\n"
+         "                                changes the parallel scale)\n"
          "  h                             print these controls (on stderr)\n"
          "  q, escape                     quit\n";
 }
@@ -174,6 +180,9 @@ void InputHandler::onKey(const InputEvent& e, ViewState& state, LocalRequests& l
       break;
     case Key::ToggleLogScale:
       state.logScale = !state.logScale;
+      break;
+    case Key::ToggleProjection:
+      controller_.toggleProjection();
       break;
     case Key::Help:
       local.help = true;

@@ -13,25 +13,26 @@ namespace sm::view {
 
 enum class Key {
   None,
-  NextStep,        // right arrow
-  PrevStep,        // left arrow
-  TogglePlay,      // space
-  MoreOpaque,      // up arrow
-  LessOpaque,      // down arrow
-  NextField,       // f (shift: previous)
-  NextColormap,    // c (shift: previous)
-  FinerStep,       // [
-  CoarserStep,     // ]
-  ResetView,       // r
-  Screenshot,      // s
-  ToggleOverlay,   // o
-  ToggleLegend,    // l
-  ToggleCut,       // x (shift: keep the other side)
-  CutNearer,       // ,
-  CutFarther,      // .
-  ToggleLogScale,  // g
-  Help,            // h
-  Quit,            // q, escape
+  NextStep,          // right arrow
+  PrevStep,          // left arrow
+  TogglePlay,        // space
+  MoreOpaque,        // up arrow
+  LessOpaque,        // down arrow
+  NextField,         // f (shift: previous)
+  NextColormap,      // c (shift: previous)
+  FinerStep,         // [
+  CoarserStep,       // ]
+  ResetView,         // r
+  Screenshot,        // s
+  ToggleOverlay,     // o
+  ToggleLegend,      // l
+  ToggleCut,         // x (shift: keep the other side)
+  CutNearer,         // ,
+  CutFarther,        // .
+  ToggleLogScale,    // g
+  ToggleProjection,  // p
+  Help,              // h
+  Quit,              // q, escape
 };
 
 enum class Button { Left, Middle, Right };

@@ -38,6 +38,7 @@ std::vector<std::string> renderArgs(const ViewState& state, int width, int heigh
                                    "--opacity-scale=" + exact(state.opacityScale),
                                    "--step=" + exact(state.dt),
                                    "--unit-distance=" + exact(look.transferFunction.unitDistance)};
+  if (state.parallel) args.push_back("--parallel-scale=" + exact(state.parallelScale));
   if (look.legend) args.push_back("--legend");
   if (look.sampled) args.push_back("--integration=sampled");
   if (look.transferFunction.scale == scene::ScalarScale::Log) args.push_back("--log-scale");

@@ -134,7 +134,7 @@ std::string scriptHelp() {
          "                                 press at the cursor, move by (DX, DY) in N equal\n"
          "                                 moves (default 1), release\n"
          "  scroll CLICKS                  mouse wheel; positive zooms in\n"
-         "  key NAME [shift]               right left space up down f c [ ] r s o l x , . g h q "
+         "  key NAME [shift]               right left space up down f c [ ] r s o l x , . g p h q "
          "escape\n"
          "  screenshot FILE                write this frame (no overlay) to FILE\n"
          "  resize W H                     ask for a W x H window (headless: the image size)\n"

@@ -219,6 +219,7 @@ void ViewScene::applyState(ViewState& state) {
     settings_.transferFunction.unitDistance = unit;
     if (points && fieldIndex_ == 0)
       scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints, "--opacity");
+    app::applyNanColor(job_, settings_.transferFunction);
     colormap_ = state.colormap;
     tableField_ = fieldIndex_;
     tableScale_ = scale;

@@ -40,15 +40,21 @@ struct ViewState {
   glm::dvec3 cutPoint{0, 0, 0}, cutNormal{0, 0, 1};
   // 1: fields whose range is positive map their logarithm (g key; --log-scale starts with it on).
   uint32_t logScale = 0;
+  // 1: parallel projection (p key; --parallel or a parallel --camera file starts with it on),
+  // parallelScale half the view's height in world units (the wheel changes it).
+  uint32_t parallel = 0;
+  double parallelScale = 1.0;
 
   scene::ClipPlane cutPlane() const { return {cutPoint, cutNormal}; }
 
-  scene::Camera camera() const { return {eye, at, up, fovyDeg}; }
+  scene::Camera camera() const { return {eye, at, up, fovyDeg, parallel != 0, parallelScale}; }
   void setCamera(const scene::Camera& c) {
     eye = c.eye;
     at = c.at;
     up = c.up;
     fovyDeg = c.fovyDeg;
+    parallel = c.parallel ? 1 : 0;
+    parallelScale = c.parallelScale;
   }
 };
 static_assert(std::is_trivially_copyable_v<ViewState>, "broadcast as bytes");

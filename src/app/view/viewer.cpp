@@ -23,6 +23,7 @@
 #include "common/file_util.h"
 #include "common/log.h"
 #include "common/timer.h"
+#include "scene/camera_file.h"
 #include "scene/image.h"
 #include "scene/legend.h"
 
@@ -192,7 +193,8 @@ void Viewer::gatherInput() {
 void Viewer::chooseRenderScale(const scene::Camera& before) {
   const scene::Camera now = state_.camera();
   const bool moved = now.eye != before.eye || now.at != before.at || now.up != before.up ||
-                     now.fovyDeg != before.fovyDeg;
+                     now.fovyDeg != before.fovyDeg || now.parallel != before.parallel ||
+                     now.parallelScale != before.parallelScale;
   if (quitPending_) state_.quit = 1;
   if (state_.quit && framesShown_ > 0 && shownState_.renderScale > 1) {
     const uint32_t frame = state_.frame;
@@ -340,6 +342,8 @@ nlohmann::json Viewer::report(uint64_t errors, const StateWaits& waits) const {
   j["at"] = {state_.at.x, state_.at.y, state_.at.z};
   j["up"] = {state_.up.x, state_.up.y, state_.up.z};
   j["fovy"] = state_.fovyDeg;
+  j["parallel"] = state_.parallel != 0;
+  j["parallel_scale"] = state_.parallelScale;
   j["field"] = f.name;
   j["time"] = state_.step;
   j["playing"] = bool(state_.playing);
@@ -397,6 +401,10 @@ void Viewer::finish() {
   const uint64_t errors = coll_.sum(scene_->context().validationErrors());
   stoppedReads_ = coll_.sum(scene_->stoppedReads());
   const StateWaits waits = otherRanksStateWaits();
+  if (root() && !options_.saveCamera.empty()) {
+    scene::writeCameraFile(options_.saveCamera, state_.camera());
+    log::info("view: camera written to ", options_.saveCamera);
+  }
   if (root() && options_.printCamera) {
     std::printf("%s\n", report(errors, waits).dump().c_str());
     std::fflush(stdout);

@@ -14,6 +14,7 @@ struct ViewOptions {
   std::string script;        // input to replay (see script.h)
   std::string screenshot;    // the last frame goes here at exit; also names the s key's PNGs
   bool printCamera = false;  // one JSON line on stdout at exit: camera, settings, render args
+  std::string saveCamera;    // at exit, the camera as a ParaView camera file (.pvcc) here
   bool headless = false;     // no window: VK_EXT_headless_surface, input from --script only
   bool overlay = true;
   bool play = false;  // start playing: a step a frame (space pauses)

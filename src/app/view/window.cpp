@@ -65,6 +65,8 @@ Key keyOf(int key) {
       return Key::CutFarther;
     case GLFW_KEY_G:
       return Key::ToggleLogScale;
+    case GLFW_KEY_P:
+      return Key::ToggleProjection;
     case GLFW_KEY_Q:
     case GLFW_KEY_ESCAPE:
       return Key::Quit;

@@ -166,6 +166,9 @@ struct SHELLMARCH_INSITU_API Image {
   // Composited over `background` and written as an 8-bit RGB PNG (atomically: a reader never sees
   // a partial file). Throws Error on failure.
   void writePng(const std::string& path, std::array<float, 3> background = {0, 0, 0}) const;
+  // Written as an 8-bit RGBA PNG that keeps the image's alpha, its colour un-premultiplied (as
+  // `shellmarch render --background transparent`), for pages and slides of any colour.
+  void writeTransparentPng(const std::string& path) const;
 };
 
 struct Options {
