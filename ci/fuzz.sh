@@ -67,44 +67,67 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/ci/lsan.supp:print_suppre
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 summary=$build/fuzz-summary.tsv
 printf 'target\tseconds\texecutions\texec_per_s\tcorpus\tcoverage\tresult\n' >"$summary"
-failed=()
-for t in "${targets[@]}"; do
-  corpus=$build/corpus/$t artifacts=$build/artifacts/$t
+# fuzz_one TARGET: fuzzes one target, then writes its summary line to $build/fuzz-TARGET.tsv and,
+# when it failed, the log's tail and what to do to $build/fuzz-TARGET.failed.
+fuzz_one() {
+  local t=$1
+  local corpus=$build/corpus/$t artifacts=$build/artifacts/$t
+  rm -f "$build/fuzz-$t.failed"
   mkdir -p "$corpus" "$artifacts"
-  regressions=tests/fuzz/regressions/$t
-  dirs=("$corpus" "$seeds/$t")
+  local regressions=tests/fuzz/regressions/$t
+  local dirs=("$corpus" "$seeds/$t")
   [ -d "$regressions" ] && dirs+=("$regressions")
   # Keywords of the format, where there is a grammar to speak of (tests/fuzz/dict/).
-  options=()
+  local options=()
   [ -f "tests/fuzz/dict/$t.dict" ] && options+=(-dict="tests/fuzz/dict/$t.dict")
-  log=$build/fuzz-$t.log
+  local log=$build/fuzz-$t.log
   echo "fuzz: $t for ${seconds}s"
   # -max_len 64 KiB: every format's structure fits, and larger seeds (can.vtu, post.vtk) are read
   # truncated. -malloc_limit_mb: no input of that size may make a reader allocate 256 MiB at once
   # (the most a 64 KiB zlib stream inflates to is 64 MiB); larger means it believed a size.
   # -timeout: one input taking 30 s is a hang (the limit leaves room for a loaded machine).
-  set +e
+  local status=0
   timed "fuzz_$t" "$build/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -max_len=65536 -malloc_limit_mb=256 \
     -rss_limit_mb=2048 -timeout=30 -print_final_stats=1 -artifact_prefix="$artifacts/" \
-    "${options[@]}" "${dirs[@]}" >"$log" 2>&1
-  status=$?
-  set -e
+    "${options[@]}" "${dirs[@]}" >"$log" 2>&1 || status=$?
+  local runs rate cov size result=ok
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
   size=$(find "$corpus" -type f | wc -l)
-  result=ok
   if [ $status -ne 0 ]; then
     result=FAILED
-    failed+=("$t")
-    tail -n 60 "$log"
-    echo "fuzz: $t FAILED (status $status); input(s) in $artifacts/:"
-    ls -1 "$artifacts"
-    echo "fuzz: fix it, then commit the input as tests/fuzz/regressions/$t/<name> (the"
-    echo "      regression test replays it through the normal entry point)"
+    {
+      tail -n 60 "$log"
+      echo "fuzz: $t FAILED (status $status); input(s) in $artifacts/:"
+      ls -1 "$artifacts"
+      echo "fuzz: fix it, then commit the input as tests/fuzz/regressions/$t/<name> (the"
+      echo "      regression test replays it through the normal entry point)"
+    } >"$build/fuzz-$t.failed"
   fi
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$t" "$seconds" "${runs:-0}" "${rate:-0}" "$size" \
-    "${cov:-0}" "$result" >>"$summary"
+    "${cov:-0}" "$result" >"$build/fuzz-$t.tsv"
+}
+
+# One fuzzer per core at a time: each is single-threaded, so the same fuzzing time per target takes
+# a fraction of the wall time.
+running=0
+for t in "${targets[@]}"; do
+  if [ $running -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+wait
+failed=()
+for t in "${targets[@]}"; do
+  cat "$build/fuzz-$t.tsv" >>"$summary"
+  if [ -f "$build/fuzz-$t.failed" ]; then
+    cat "$build/fuzz-$t.failed"
+    failed+=("$t")
+  fi
 done
 end=$(date +%s)
 column -t -s $'\t' "$summary"
