@@ -40,7 +40,7 @@ skip=()  # tests of targets this set does not build
 if [ $all = 1 ]; then
   targets+=(test_viewer test_viewer_unit test_app shellmarch)
 else
-  skip=(-E '^(app|ViewerHeadless|ViewerTests|Reliability)[.]')
+  skip=(-E '^(app|ViewerHeadless|ViewerTests)[.]')
 fi
 timed build cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 

@@ -29,12 +29,13 @@ case $case_name in
     mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 24 --out r3.pfm
     mpi 4 "$sm" render demo.pvtu "${view[@]}" --clusters 72 --stats --out r4.pfm
     for n in 2 3 4; do "$diff" one.pfm r$n.pfm --max-abs 1e-3; done
-    # The ray tracing pipeline tracer gives the ray queries' images bit for bit, on 1 rank and on 4
-    # (TracerChoice and the other rank counts' images above cover the rest).
+    # The ray tracing pipeline tracer gives the ray queries' images bit for bit on 1 to 4 ranks.
     "$sm" render demo.pvtu "${view[@]}" --clusters 1 --tracer pipeline --out one-pipeline.pfm
+    mpi 2 "$sm" render demo.pvtu "${view[@]}" --clusters 8 --tracer pipeline --out r2-pipeline.pfm
+    mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 24 --tracer pipeline --out r3-pipeline.pfm
     mpi 4 "$sm" render demo.pvtu "${view[@]}" --clusters 72 --tracer pipeline --out r4-pipeline.pfm
     cmp one.pfm one-pipeline.pfm
-    cmp r4.pfm r4-pipeline.pfm
+    for n in 2 3 4; do cmp r$n.pfm r$n-pipeline.pfm; done
     # Which rank composites a pixel changes nothing in it: the paper's contiguous ranges give the
     # interleaved default's image bit for bit.
     mpi 3 "$sm" render demo.pvtu "${view[@]}" --clusters 24 --pixel-ownership ranges --out r3-ranges.pfm
