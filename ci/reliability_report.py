@@ -210,6 +210,37 @@ INDEX_LIMITS = (
     "forever.\n")
 
 
+# Limits of counts and buffer sizes at scale, and the tests that hold each (text, not a run's
+# numbers).
+SCALE_LIMITS = (
+    "A mesh holds 32-bit vertex ids, so one mesh (a file, or what one rank reads of a .pvtu) "
+    "holds at most 2^32 - 1 points: a .vtu, legacy .vtk or .ugrid header declaring more, or the"
+    " pieces one rank is about to read declaring more together (their headers, read first), is "
+    "refused before any data is read, naming the file and saying to split it into pieces and "
+    "use more ranks (`mesh::checkPointCount`; tests "
+    "`MeshBuilder.PointCountsPast32BitIdsAreRefusedAtTheBoundary`, "
+    "`Robustness.PointCountsPast32BitIdsAreRefusedBeforeReading`, "
+    "`PvtuReader.PiecesPast32BitIdsTogetherAreRefusedBeforeReading`). Cell counts are 64-bit: "
+    "past 2^31 and 2^32 they are read where memory allows "
+    "(`Robustness.CellCountsPast2To31And2To32AreCheckedAgainstTheData`); only cell origins "
+    "(kept for cell data around split polyhedra) are 32-bit, and asking for them past 2^32 "
+    "cells is refused before reading "
+    "(`PvtuReader.CellOriginsPast32BitsTogetherAreRefusedBeforeReading`). Neighbour references "
+    "are an element index shifted past a 2-bit type (the paper's encoding): the 2^31-word bound"
+    " above keeps every index below 2^30 - 1 for every type and encoding (a `static_assert` in "
+    "prep/prepare.h), and `ShaderIndexRange.*` checks each type at its largest accepted and "
+    "smallest refused count. Device buffers are reached through their device addresses, never a"
+    " descriptor range: each is checked against the device's `maxBufferSize` (Vulkan 1.3 "
+    "maintenance4) and `maxMemoryAllocationSize` (maintenance3) before it is created and before"
+    " its memory is allocated (`vk::bufferSizeError`), and refused in one line naming the "
+    "buffer, its size, the limit and how many times the ranks would bring it under (lavapipe: 4"
+    " GiB - 1 and 2 GiB; tests `BufferLimits.AtEachLimitABufferPassesAndOneByteMoreIsRefused`, "
+    "`Vk.BufferPastTheDeviceLimitsIsRefusedBeforeAllocating`). `generate` checks the disk and "
+    "memory a mesh needs before it writes anything, and writes pieces to staging names, the "
+    "index last (`app.generate-grid`). docs/BENCHMARKS.md (\"Scale\") has the sizes that were "
+    "run.\n")
+
+
 def regressions_section(md):
     md.append("### Bugs the fuzzers found, fixed\n")
     md.append("Each input is committed under tests/fuzz/regressions/TARGET/ and listed in its "
@@ -360,6 +391,8 @@ def limits_section(md):
     md.append("")
     md.append("### 32-bit indices on the device\n")
     md.append(INDEX_LIMITS)
+    md.append("### Counts past 32 bits, buffers past the device's limits\n")
+    md.append(SCALE_LIMITS)
     md.append("### Fragment overflow\n")
     md.append("Fixed-length lists (`--lists drop|merge --k K`) count every fragment they drop or "
               "merge (`RenderStats.overflow`). `--stats` prints it per frame, `--stats-json` has "

@@ -23,11 +23,41 @@ std::string bytesText(uint64_t bytes) {
     std::snprintf(text, sizeof text, "%.1f KiB", double(bytes) / 1024.0);
   return text;
 }
+
+// Bytes in both units: the exact count shows how far past a limit a buffer is.
+std::string sizeText(uint64_t bytes) {
+  return bytesText(bytes) + " (" + std::to_string(bytes) + " bytes)";
+}
+
+void refuseOverLimit(const Context& ctx, const std::string& name, uint64_t bytes,
+                     uint64_t allocationBytes) {
+  const std::string why = bufferSizeError(name, bytes, allocationBytes, ctx.bufferLimits());
+  if (!why.empty())
+    throw BufferLimitError(why, VK_ERROR_OUT_OF_DEVICE_MEMORY, allocationBytes,
+                           ctx.deviceMemoryInUse());
+}
 }  // namespace
+
+std::string bufferSizeError(const std::string& name, uint64_t bytes, uint64_t allocationBytes,
+                            const BufferLimits& limits) {
+  const bool buffer = bytes > limits.maxBufferSize;
+  if (!buffer && allocationBytes <= limits.maxAllocationSize) return {};
+  const uint64_t size = buffer ? bytes : allocationBytes;
+  const uint64_t limit = buffer ? limits.maxBufferSize : limits.maxAllocationSize;
+  // A rank's buffers shrink with its share of the mesh: this many times the ranks bring this one
+  // under the limit (size > limit >= 0, so size >= 1).
+  const uint64_t times = (size - 1) / std::max<uint64_t>(limit, 1) + 1;
+  return "buffer '" + name + "' needs " + sizeText(size) + ", more than the device's " +
+         (buffer ? "largest buffer (maxBufferSize, "
+                 : "largest allocation (maxMemoryAllocationSize, ") +
+         sizeText(limit) + "); use more ranks (at least " + std::to_string(times) +
+         " times as many)";
+}
 
 Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                const std::string& name)
     : ctx_(&ctx), size_(std::max(size, kMinSize)), name_(name) {
+  refuseOverLimit(ctx, name, size_, size_);  // before the buffer is created
   VkDevice dev = ctx.device();
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size_;
@@ -40,6 +70,7 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
 
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(dev, buf, &req);
+  refuseOverLimit(ctx, name, size_, req.size);  // before its memory is allocated
   VkMemoryPropertyFlags want = 0, avoid = 0;
   switch (use) {
     case MemoryUse::Device:

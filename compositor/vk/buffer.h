@@ -18,10 +18,18 @@ enum class MemoryUse {
   Readback,  // host-visible and cached, read by the CPU (host-staged MPI, images)
 };
 
+// Empty when a buffer `name` of `bytes`, whose memory takes `allocationBytes`, is within `limits`;
+// else one line naming the buffer, its size, the limit it passes and what would fit. Buffer checks
+// this before it creates the buffer (its size standing for the memory too) and again before it
+// allocates the memory the device asks for, throwing BufferLimitError.
+std::string bufferSizeError(const std::string& name, uint64_t bytes, uint64_t allocationBytes,
+                            const BufferLimits& limits);
+
 class Buffer {
  public:
   Buffer() = default;
-  // size 0 is rounded up so that every buffer has a valid address.
+  // size 0 is rounded up so that every buffer has a valid address. Throws BufferLimitError for a
+  // size past the device's limits (bufferSizeError), DeviceMemoryError when memory runs out.
   Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
          const std::string& name);
   Buffer(Buffer&& o) noexcept { *this = std::move(o); }

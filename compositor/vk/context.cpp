@@ -277,9 +277,20 @@ void Context::pickDevice(const ContextOptions& o) {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
   const bool hasAs = hasExtension(physical_, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
   if (hasAs) sub.pNext = &as;
+  // Vulkan 1.1 (the device has 1.2: buffer device addresses); maintenance4's only with its
+  // extension, as the instance asks for 1.2.
+  VkPhysicalDeviceMaintenance3Properties m3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceMaintenance4PropertiesKHR m4{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES_KHR};
+  const bool hasM4 = hasExtension(physical_, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+  m4.pNext = &sub;
+  m3.pNext = hasM4 ? static_cast<void*>(&m4) : static_cast<void*>(&sub);
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  p2.pNext = &sub;
+  p2.pNext = &m3;
   vkGetPhysicalDeviceProperties2(physical_, &p2);
+  bufferLimits_.maxAllocationSize = m3.maxMemoryAllocationSize;
+  if (hasM4) bufferLimits_.maxBufferSize = m4.maxBufferSize;
   subgroupSize_ = sub.subgroupSize;
   asPrimitiveLimit_ = hasAs ? as.maxPrimitiveCount : 0;
   if (const char* cap = std::getenv("SHELLMARCH_AS_PRIMITIVE_LIMIT"); cap && *cap)

@@ -79,6 +79,15 @@ struct RayTracingLimits {
   bool raygenSubgroups = false;  // subgroup basic, vote and arithmetic in ray generation shaders
 };
 
+// The device's limits on one buffer: its size (maxBufferSize of
+// VkPhysicalDeviceMaintenance4Properties, where the device has VK_KHR_maintenance4) and its memory
+// (maxMemoryAllocationSize of VkPhysicalDeviceMaintenance3Properties). UINT64_MAX where the device
+// does not say.
+struct BufferLimits {
+  uint64_t maxBufferSize = UINT64_MAX;
+  uint64_t maxAllocationSize = UINT64_MAX;
+};
+
 struct DeviceReport {
   uint32_t index;
   std::string name;
@@ -117,6 +126,8 @@ class Context {
   // without acceleration structures), or SHELLMARCH_AS_PRIMITIVE_LIMIT where smaller: the test
   // hook, as no test can build a shell at the spec's minimum of 2^29 - 1.
   uint64_t asPrimitiveLimit() const { return asPrimitiveLimit_; }
+  // What one buffer may hold (vk::Buffer refuses larger ones before allocating).
+  const BufferLimits& bufferLimits() const { return bufferLimits_; }
   double timestampPeriodNs() const { return props_.limits.timestampPeriod; }
   // How pipelines are compiled and kept, and what each cost (the startup statistics).
   const PipelineStore& pipelines() const { return *store_; }
@@ -183,6 +194,7 @@ class Context {
   bool forceStaging_ = false;
   uint32_t subgroupSize_ = 1;
   uint64_t asPrimitiveLimit_ = 0;
+  BufferLimits bufferLimits_;
   uint64_t memoryLimit_ = UINT64_MAX;
   uint32_t validationLayerVersion_ = 0;
   std::unique_ptr<PipelineStore> store_;

@@ -34,6 +34,14 @@ class DeviceMemoryError : public VulkanError {
   uint64_t requested_, inUse_;
 };
 
+// A buffer larger than the device takes in one buffer or one allocation (vk::BufferLimits),
+// refused before anything is created: a DeviceMemoryError, so that callers that fall back on less
+// memory, or say what would fit, treat it as such.
+class BufferLimitError : public DeviceMemoryError {
+ public:
+  using DeviceMemoryError::DeviceMemoryError;
+};
+
 [[noreturn]] void throwVkError(const char* expr, VkResult r, const char* file, int line);
 
 }  // namespace sm::vk

@@ -32,6 +32,10 @@ mesh::PolyhedronFaces facesFromStream(std::span<const int64_t> stream, const std
     throw FileError(source, "cell ", fileCell, " (polyhedron): ", what...);
   };
   if (stream.empty()) fail("its face stream is empty");
+  // PolyhedronFaces keeps 32-bit offsets into its ids.
+  if (stream.size() > 0xFFFFFFFFull)
+    fail("its face stream has ", stream.size(), " values, more than the ", 0xFFFFFFFFull,
+         " one polyhedron may have");
   const int64_t numFaces = stream[0];
   if (numFaces < 1 || uint64_t(numFaces) > stream.size())
     fail("its face stream claims ", numFaces, " faces in ", stream.size(), " values");

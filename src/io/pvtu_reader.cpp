@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include "common/error.h"
 #include "common/file_util.h"
@@ -12,6 +13,7 @@
 #include "io/readers.h"
 #include "io/vtu_document.h"
 #include "io/weld.h"
+#include "mesh/mesh_builder.h"
 
 namespace sm::io {
 
@@ -121,11 +123,16 @@ uint64_t tagNumber(const std::string& file, std::string_view tag, std::string_vi
   throw FileError(file, "a <Piece> has no ", key);
 }
 
+uint64_t addCapped(uint64_t a, uint64_t b) {
+  return b > UINT64_MAX - a ? UINT64_MAX : a + b;
+}
+
 // NumberOfPoints and NumberOfCells of a .vtu, summed over its <Piece>s, from the start of the file
 // only: the XML header precedes appended data, so a piece is sized without being read. The prefix
 // read doubles until the header is complete (appended data or the grid's end seen, no tag cut
-// off), so long field data before the <Piece> or an inline first piece only cost more reading.
-DeclaredSize declaredVtuSize(const std::string& file) {
+// off), so long field data before the <Piece> or an inline first piece only cost more reading;
+// none (nullopt) once the prefix would pass `limit` bytes.
+std::optional<DeclaredSize> declaredVtuSize(const std::string& file, size_t limit) {
   for (size_t prefix = size_t(1) << 12;; prefix *= 2) {
     const std::string head = FileBytes::readPrefix(file, prefix);
     checkPieceIsNotAnIndex({reinterpret_cast<const uint8_t*>(head.data()), head.size()}, file);
@@ -140,8 +147,8 @@ DeclaredSize declaredVtuSize(const std::string& file) {
         break;
       }
       const std::string_view tag(head.data() + at, close - at);
-      size.points += tagNumber(file, tag, "NumberOfPoints");
-      size.cells += tagNumber(file, tag, "NumberOfCells");
+      size.points = addCapped(size.points, tagNumber(file, tag, "NumberOfPoints"));
+      size.cells = addCapped(size.cells, tagNumber(file, tag, "NumberOfCells"));
       found = true;
     }
     if (!cut && (end != std::string::npos || whole)) {
@@ -149,7 +156,39 @@ DeclaredSize declaredVtuSize(const std::string& file) {
       return size;
     }
     if (whole) throw FileError(file, "its header ends inside a <Piece> tag");
+    if (prefix >= limit) return std::nullopt;
   }
+}
+
+DeclaredSize declaredVtuSize(const std::string& file) {
+  return *declaredVtuSize(file, SIZE_MAX);
+}
+
+// The points of the pieces about to be read (and their cells, where origins are kept), from their
+// headers: a share past what one mesh holds is refused before any piece is read, not by the weld
+// once all are. A header not found near the start of its file (an inline piece) is not read
+// through for this, and one that cannot be read is left to the piece's reader to name: the weld
+// checks again.
+void checkDeclaredTotals(const std::string& path, const std::vector<std::string>& files,
+                         const std::vector<int>& chosen, const ReadOptions& options) {
+  constexpr size_t kHeaderBytes = size_t(1) << 20;
+  DeclaredSize total;
+  for (int i : chosen) {
+    std::optional<DeclaredSize> size;
+    try {
+      size = declaredVtuSize(files[size_t(i)], kHeaderBytes);
+    } catch (const Error&) {
+      return;
+    }
+    if (!size) return;
+    total.points = addCapped(total.points, size->points);
+    total.cells = addCapped(total.cells, size->cells);
+  }
+  mesh::checkPointCount(path, total.points, "the pieces to be read declare", "use more ranks");
+  if (options.cellOrigins && total.cells > 0xFFFFFFFFull)
+    throw FileError(path, "the pieces to be read declare ", total.cells,
+                    " cells: cell origins are 32-bit, so at most ", 0xFFFFFFFFull,
+                    " can be kept (use more ranks)");
 }
 
 }  // namespace
@@ -179,6 +218,9 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
   const std::vector<std::string> files = pvtuPieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
   const std::vector<int> chosen = pvtuChosenPieces(path, static_cast<int>(files.size()), options);
+  // (Headers are read from files: an in-memory bundle, a fuzzer's, is checked by the weld only.)
+  const bool fromFiles = open.target<FileBytes (*)(const std::string&)>() != nullptr;
+  if (fromFiles) checkDeclaredTotals(path, files, chosen, options);
   Progress progress("piece read", chosen.size());
   for (int i : chosen) {
     pieces.push_back(readVtu(open(files[i]), files[i], options, i));
@@ -187,8 +229,6 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
   // From the pieces' headers: their fields' step counts (pieces loaded with one step each cannot
   // show the weld that they differ) and components (a magnitude welds to a scalar without a
   // seam), each piece against the file's first, so that ranks reading other pieces agree.
-  // (Headers are read from files: an in-memory bundle, a fuzzer's, is checked by the weld only.)
-  const bool fromFiles = open.target<FileBytes (*)(const std::string&)>() != nullptr;
   if (options.loadFields && files.size() > 1 && (options.step || fromFiles))
     listFieldSteps(path, options);
   throwIfStopped(options.stopRequested, path);

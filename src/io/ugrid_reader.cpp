@@ -97,6 +97,8 @@ class UgridReader {
                         bytes_.size(), " bytes");
     counts_ = {uint64_t(c[0]), uint64_t(c[1]), uint64_t(c[2]), uint64_t(c[3]),
                uint64_t(c[4]), uint64_t(c[5]), uint64_t(c[6])};
+    mesh::checkPointCount(src_, counts_.nodes, "declares",
+                          "split it into the pieces of a .pvtu and use more ranks");
   }
 
   void readBinary() {

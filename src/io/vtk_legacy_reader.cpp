@@ -170,6 +170,8 @@ class LegacyReader {
     if (key == "points") {
       TextCursor l(in_.line());
       numPoints_ = in_.count(l.token(), "POINTS count");
+      mesh::checkPointCount(src_, numPoints_, "declares",
+                            "split it into the pieces of a .pvtu and use more ranks");
       points_ = in_.data(l.token(), 3, numPoints_, "points", true);
     } else if (key == "cells") {
       cellsSection();

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "mesh/mesh_builder.h"
 
 namespace sm::io {
 
@@ -17,6 +18,11 @@ std::vector<VtuPiece> vtuPieces(const VtuDocument& doc) {
     points += piece.numPoints;
     cells += piece.numCells;
     pieces.push_back(piece);
+    // Before anything is read, and before the sum can wrap (each count is at most 2^60).
+    mesh::checkPointCount(src, points, pieces.size() > 1 ? "its pieces declare" : "declares",
+                          "split it into the pieces of a .pvtu and use more ranks");
+    if (cells > uint64_t(1) << 60)  // as VtuDocument::count bounds one piece's
+      throw FileError(src, "its pieces declare ", cells, " cells, more than a file can hold");
   }
   if (pieces.empty()) throw FileError(src, "has no <Piece> element");
   return pieces;

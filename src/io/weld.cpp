@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "mesh/mesh_builder.h"
 
 namespace sm::io {
 namespace {
@@ -160,8 +161,9 @@ void joinCellOrigins(const std::vector<mesh::UnstructuredMesh>& pieces,
   uint64_t total = 0;
   for (const auto& p : pieces) total += span(p);
   if (total > 0xFFFFFFFFull)
-    throw FileError(out.source, "the pieces hold ", total,
-                    " cells: more than 2^32 - 1, the most whose origins can be kept");
+    throw FileError(out.source, "the pieces read hold ", total,
+                    " cells: cell origins are 32-bit, so at most ", 0xFFFFFFFFull,
+                    " can be kept (use more ranks)");
   out.fileCells = total;
   for (int t = 0; t < mesh::kNumCellTypes; ++t) {
     uint64_t offset = 0;
@@ -186,8 +188,8 @@ mesh::UnstructuredMesh weldPieces(const std::string& source,
   if (pieces.empty()) return out;
   uint64_t total = 0;
   for (const auto& p : pieces) total += p.points.size();
-  if (total > 0xFFFFFFFFull)
-    throw FileError(source, "the pieces hold ", total, " points, more than 2^32 - 1");
+  // Checked before the welding, whose point origins and piece starts are 32-bit.
+  mesh::checkPointCount(source, total, "the pieces read hold", "use more ranks");
   Welding w = weldPoints(pieces);
   weldFields(source, pieces, w, out);
   joinCellFields(source, pieces, out);

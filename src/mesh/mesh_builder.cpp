@@ -100,13 +100,21 @@ VtkTypeInfo classify(int vtkType) {
 
 }  // namespace
 
+void checkPointCount(const std::string& source, uint64_t points, std::string_view holder,
+                     std::string_view fits) {
+  if (points > kMaxMeshPoints)
+    throw FileError(source, holder, " ", points,
+                    " points: vertex ids are 32-bit, so one mesh holds at most ", kMaxMeshPoints,
+                    " (", fits, ")");
+}
+
 MeshBuilder::MeshBuilder(std::string source) : source_(std::move(source)) {
   mesh_.source = source_;
 }
 
 void MeshBuilder::setPoints(std::vector<glm::dvec3> points) {
-  if (points.size() > 0xFFFFFFFFull)
-    throw FileError(source_, points.size(), " points: more than 2^32 - 1 in one piece");
+  checkPointCount(source_, points.size(), "has",
+                  "split the data set into pieces, a .pvtu, and use more ranks");
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -315,8 +323,9 @@ void MeshBuilder::renumberSparseClusters(const std::string& arrayName) {
 void MeshBuilder::keepCellOrigins(uint64_t fileCells) {
   // Origins are 32-bit, like vertex ids: one rank's pieces never hold more cells.
   if (fileCells > 0xFFFFFFFFull)
-    throw FileError(source_, "has ", fileCells,
-                    " cells: more than 2^32 - 1, the most whose origins can be kept");
+    throw FileError(source_, "has ", fileCells, " cells: cell origins are 32-bit, so at most ",
+                    0xFFFFFFFFull,
+                    " can be kept (split it into pieces, a .pvtu, and use more ranks)");
   fileCells_ = fileCells;
   keepOrigins_ = true;
 }

@@ -8,12 +8,22 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mesh/polyhedron.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::mesh {
+
+// Element vertex ids are 32-bit (UnstructuredMesh::cells), so one mesh, and so one rank's share,
+// holds at most this many points.
+inline constexpr uint64_t kMaxMeshPoints = 0xFFFFFFFFull;
+// Refuses `points` past kMaxMeshPoints with one sm::FileError naming `source`: "<holder> N points:
+// vertex ids are 32-bit, ... (<fits>)". Readers call it with the count a header declares, before
+// anything of that size is read; `fits` says what would fit ("use more ranks").
+void checkPointCount(const std::string& source, uint64_t points, std::string_view holder,
+                     std::string_view fits);
 
 class MeshBuilder {
  public:

@@ -9,6 +9,7 @@
 
 #include "common/check.h"
 #include "common/error.h"
+#include "mesh/mesh_builder.h"
 
 namespace sm::mesh {
 
@@ -132,8 +133,8 @@ void append(UnstructuredMesh& a, const UnstructuredMesh& b) {
   // Cell fields are averaged onto points where each mesh is read, before any append.
   SM_CHECK(a.cellFields.empty() && b.cellFields.empty());
   uint64_t offset = a.points.size();
-  if (offset + b.points.size() > 0xFFFFFFFFull)
-    throw Error(b.source, ": more than 2^32 - 1 points in one rank's share of the mesh");
+  checkPointCount(b.source, offset + b.points.size(), "appended, a mesh would hold",
+                  "use more ranks");
   for (size_t i = 0; i < a.fields.size(); ++i) {
     const Field* fb = b.findField(a.fields[i].name);
     if (!fb) throw Error(b.source, ": has no point field '", a.fields[i].name, "'");

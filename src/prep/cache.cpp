@@ -6,6 +6,7 @@
 #include "common/file_util.h"
 #include "common/hash.h"
 #include "prep/compaction.h"
+#include "prep/prepare.h"
 
 namespace sm::prep {
 namespace {
@@ -102,10 +103,25 @@ class Reader {
   size_t n_, pos_ = 0;
 };
 
+// Sizes within the shaders' 32-bit word indices, as preparation checked them when it wrote the
+// cache.
+void validateSizes(const PreparedRank& r) {
+  SceneSizes sizes;
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) sizes.elements[t] = r.elementCount[t];
+  sizes.vertices = r.vertexSource.size();
+  sizes.shellTriangles = r.shellRefs.size();
+  try {
+    checkShaderIndexRange("cache", sizes, r.compact);
+  } catch (const Error& e) {
+    throw Corrupt{e.what()};
+  }
+}
+
 // Every index must be in range so that a corrupt cache can never make a shader read out of bounds.
 void validate(const PreparedRank& r) {
   const uint64_t nv = r.vertexSource.size();
   if (r.positions.size() != 3 * nv) throw Corrupt{"position count does not match vertex count"};
+  validateSizes(r);
   for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
     const uint64_t n = r.elementCount[t];
     if (n >= gpu::SM_MAX_ELEMS_PER_TYPE) throw Corrupt{"element count out of range"};

@@ -63,23 +63,29 @@ uint32_t PreparedRank::typesPresent() const {
   return bits;
 }
 
+// Every element index the word bound admits is also one an element reference (index << 2 | type)
+// holds without reaching SM_NO_NEIGHBOR (~0u, index 2^30 - 1 of type 3): smElemRef cannot wrap
+// for any scene that passed checkShaderIndexRange, in either encoding.
+static_assert([] {
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t)
+    for (bool compact : {false, true})
+      if (maxElementsOnRank(t, compact) >= gpu::SM_MAX_ELEMS_PER_TYPE - 1) return false;
+  return true;
+}());
+
 void checkShaderIndexRange(const std::string& source, const SceneSizes& sizes, bool compact) {
-  constexpr uint64_t kWords = uint64_t(1) << 31;
-  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
-    const uint64_t record =
-        compact && t != gpu::SM_HEX ? gpu::SM_COMPACT_WORDS[t] : gpu::SM_PLAIN_WORDS[t];
-    const uint64_t words = std::max<uint64_t>(record, gpu::SM_NUM_FACES[t]);
-    if (sizes.elements[t] * words >= kWords)
+  // Compared by count, not by count x words, which could wrap for absurd counts.
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t)
+    if (sizes.elements[t] > maxElementsOnRank(t, compact))
       throw Error(source, ": ", sizes.elements[t], " ", mesh::cellTypePluralName(mesh::CellType(t)),
-                  " on one rank; the shaders' 32-bit indices reach ", (kWords - 1) / words,
-                  " (use more ranks)");
-  }
-  if (sizes.vertices * 4 >= kWords)  // 16-byte records: 4 words each
+                  " on one rank; the shaders' 32-bit indices reach at most ",
+                  maxElementsOnRank(t, compact), " (use more ranks)");
+  if (sizes.vertices > kMaxVerticesOnRank)
     throw Error(source, ": ", sizes.vertices, " vertices on one rank; the shaders' 32-bit indices",
-                " reach ", (kWords - 1) / 4, " (use more ranks)");
-  if (sizes.shellTriangles * 3 >= kWords)
+                " reach at most ", kMaxVerticesOnRank, " (use more ranks)");
+  if (sizes.shellTriangles > kMaxShellTrianglesOnRank)
     throw Error(source, ": a shell of ", sizes.shellTriangles, " triangles on one rank; the",
-                " shaders' 32-bit indices reach ", (kWords - 1) / 3,
+                " shaders' 32-bit indices reach at most ", kMaxShellTrianglesOnRank,
                 " (use more ranks, or clusters with less surface)");
 }
 
@@ -89,13 +95,9 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   PreparedRank& r = result.rank;
   r.frame = frame;
   r.compact = options.compact;
-  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
+  // Before any work; the bound also keeps every element reference below 2^30 (static_assert).
+  for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t)
     r.elementCount[t] = mesh.cells[t].size() / gpu::SM_NUM_VERTS[t];
-    if (r.elementCount[t] >= gpu::SM_MAX_ELEMS_PER_TYPE)
-      throw Error(
-          mesh.source, ": ", r.elementCount[t], " ", mesh::cellTypePluralName(mesh::CellType(t)),
-          " on one rank; an element reference addresses at most 2^30 per type (use more ranks)");
-  }
   SceneSizes sizes;
   for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) sizes.elements[t] = r.elementCount[t];
   sizes.vertices = mesh.points.size();
@@ -126,6 +128,10 @@ PrepResult prepareRank(mesh::UnstructuredMesh& mesh, const GlobalFrame& frame,
   result.timings.connectivity = timer.seconds();
 
   timer.reset();
+  // Each shell face becomes one or two triangles: too many faces are refused before the triangles
+  // are made, which also keeps their count, and the sort's 32-bit triangle numbers, below 2^32.
+  sizes.shellTriangles = result.connectivity.boundaryFaces;
+  checkShaderIndexRange(mesh.source, sizes, options.compact);
   Shell shell = extractShell(elements, r.neighbors, r.positions);
   sizes.shellTriangles = shell.refs.size();
   checkShaderIndexRange(mesh.source, sizes, options.compact);

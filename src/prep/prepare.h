@@ -38,6 +38,18 @@ struct SceneSizes {
 };
 void checkShaderIndexRange(const std::string& source, const SceneSizes& sizes, bool compact);
 
+// The largest sizes checkShaderIndexRange accepts: the words of the largest array of each (word
+// indices up to 2^31 - 1), divided by the words per item. An element's array is its records or
+// its neighbours (one per face), whichever has more words per element.
+inline constexpr uint64_t kMaxShaderWords = (uint64_t(1) << 31) - 1;
+constexpr uint64_t maxElementsOnRank(uint32_t type, bool compact) {
+  const uint64_t record =
+      compact && type != gpu::SM_HEX ? gpu::SM_COMPACT_WORDS[type] : gpu::SM_PLAIN_WORDS[type];
+  return kMaxShaderWords / (record > gpu::SM_NUM_FACES[type] ? record : gpu::SM_NUM_FACES[type]);
+}
+inline constexpr uint64_t kMaxVerticesOnRank = kMaxShaderWords / 4;        // 16-byte records
+inline constexpr uint64_t kMaxShellTrianglesOnRank = kMaxShaderWords / 3;  // 3 indices each
+
 // One step of one field in this rank's vertex order (what the GPU scalar buffer holds).
 std::vector<float> gatherScalars(const PreparedRank& rank, std::span<const float> meshValues);
 

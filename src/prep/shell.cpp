@@ -46,7 +46,8 @@ void sortShellSpatially(Shell& shell, const std::vector<float>& positions) {
   const size_t n = shell.refs.size();
   if (n < 2) return;
   auto pos = [&](uint32_t v) {
-    return glm::dvec3(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    const size_t i = 3 * size_t(v);  // not 3 * v in 32 bits
+    return glm::dvec3(positions[i], positions[i + 1], positions[i + 2]);
   };
   mesh::Bounds b;
   std::vector<glm::dvec3> centroid(n);
@@ -75,8 +76,8 @@ void sortShellSpatially(Shell& shell, const std::vector<float>& positions) {
 std::vector<uint32_t> shellAdjacency(const std::vector<uint32_t>& indices) {
   const size_t nt = indices.size() / 3;
   struct Edge {
-    uint64_t key;    // min << 32 | max
-    uint32_t slot;   // 3 * triangle + k
+    uint64_t key;   // min << 32 | max
+    uint32_t slot;  // 3 * triangle + k
   };
   std::vector<Edge> edges(3 * nt);
   for (size_t t = 0; t < nt; ++t)

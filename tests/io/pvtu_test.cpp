@@ -6,6 +6,7 @@
 #include "io/mesh_io.h"
 #include "io/weld.h"
 #include "io_test_util.h"
+#include "support/allocation_cap.h"
 #include "support/test_support.h"
 
 namespace sm::io {
@@ -104,6 +105,65 @@ TEST(PvtuReader, MissingPieceFileIsNamed) {
   std::string msg = fileErrorOf([&] { readMesh(dir + "/m.pvtu"); });
   EXPECT_NE(msg.find("m/m_0.vtu"), std::string::npos) << msg;
   EXPECT_EQ(countPieces(dir + "/m.pvtu"), 1);
+}
+
+// A piece whose header declares `points` and `cells` but holds one point and no cell data: its
+// header is believed only as far as its data goes.
+std::string declaredPiece(uint64_t points, uint64_t cells) {
+  return concat("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"><UnstructuredGrid><Piece ",
+                "NumberOfPoints=\"", points, "\" NumberOfCells=\"", cells, "\"><Points><DataArray ",
+                "type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray>",
+                "</Points><Cells><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">",
+                "</DataArray></Cells></Piece></UnstructuredGrid></VTKFile>\n");
+}
+
+// Writes DIR/big.pvtu with pieces a.vtu and b.vtu; returns its path.
+std::string twoPieceIndex(const std::string& dir, const std::string& a, const std::string& b) {
+  test::writeText(dir + "/a.vtu", a);
+  test::writeText(dir + "/b.vtu", b);
+  test::writeText(dir + "/big.pvtu",
+                  "<?xml version=\"1.0\"?><VTKFile type=\"PUnstructuredGrid\" version=\"1.0\">"
+                  "<PUnstructuredGrid><Piece Source=\"a.vtu\"/><Piece Source=\"b.vtu\"/>"
+                  "</PUnstructuredGrid></VTKFile>");
+  return dir + "/big.pvtu";
+}
+
+// One rank's pieces are welded into one mesh with 32-bit vertex ids and point origins: pieces
+// that fit alone (2^32 - 1 points and 1) but not together are refused from their headers before
+// any is read, naming the limit and what would fit; either piece alone is read (and fails here
+// only on the data it lacks).
+TEST(PvtuReader, PiecesPast32BitIdsTogetherAreRefusedBeforeReading) {
+  sm::test::AllocationCap cap;
+  const std::string dir = sm::test::outputDir("PvtuReader.PiecesPast32BitIds");
+  const std::string index =
+      twoPieceIndex(dir, declaredPiece(0xFFFFFFFFull, 0), declaredPiece(1, 0));
+  EXPECT_EQ(fileErrorOf([&] { readMesh(index); }),
+            index +
+                ": the pieces to be read declare 4294967296 points: vertex ids are 32-bit, so "
+                "one mesh holds at most 4294967295 (use more ranks)");
+  ReadOptions first;
+  first.pieces = {0};
+  EXPECT_NE(fileErrorOf([&] { readMesh(index, first); }).find("a.vtu: points: declares"),
+            std::string::npos);
+  ReadOptions second;
+  second.pieces = {1};
+  EXPECT_EQ(readMesh(index, second).numPoints(), 1u);
+}
+
+// Cell origins (kept for streamed cell data) are 32-bit: pieces that together declare 2^32 cells
+// are refused before any is read when origins are asked for; otherwise cell counts are 64-bit and
+// the read goes on (to the data these pieces lack).
+TEST(PvtuReader, CellOriginsPast32BitsTogetherAreRefusedBeforeReading) {
+  sm::test::AllocationCap cap;
+  const std::string dir = sm::test::outputDir("PvtuReader.CellOriginsPast32Bits");
+  const std::string index =
+      twoPieceIndex(dir, declaredPiece(1, 0xFFFFFFFFull), declaredPiece(1, 1));
+  ReadOptions origins;
+  origins.cellOrigins = true;
+  const std::string msg = fileErrorOf([&] { readMesh(index, origins); });
+  EXPECT_EQ(msg.rfind(index + ": the pieces to be read declare 4294967296 cells", 0), 0u) << msg;
+  EXPECT_NE(msg.find("use more ranks"), std::string::npos) << msg;
+  EXPECT_NE(fileErrorOf([&] { readMesh(index); }).find("a.vtu: "), std::string::npos);
 }
 
 // A piece that is itself a .pvtu index is named as such; the advice for a parallel file named

@@ -116,13 +116,13 @@ TEST(Robustness, AbsurdSizesInVtuAreRejectedBeforeAllocating) {
   const std::string ascii = fixtureText("mesh_ascii.vtu");
   expectError(replaced(ascii, "NumberOfCells=\"8\"", "NumberOfCells=\"1099511627776\""), "a.vtu",
               "declares 1099511627776 values");
-  expectError(replaced(ascii, "NumberOfPoints=\"13\"", "NumberOfPoints=\"1152921504606846975\""),
+  expectError(replaced(ascii, "NumberOfCells=\"8\"", "NumberOfCells=\"1152921504606846975\""),
               "a.vtu", "impossible size");
   expectError(replaced(ascii, "NumberOfPoints=\"13\"", "NumberOfPoints=\"-5\""), "a.vtu",
               "not a count");
   const std::string raw = fixtureText("mesh_appended_raw_none_h64.vtu");
-  expectError(replaced(raw, "NumberOfPoints=\"13\"", "NumberOfPoints=\"1099511627776\""), "r.vtu",
-              "holds 312 bytes, expected 26388279066624");
+  expectError(replaced(raw, "NumberOfPoints=\"13\"", "NumberOfPoints=\"4294967295\""), "r.vtu",
+              "holds 312 bytes, expected 103079215080");
   expectError(replaced(raw, "NumberOfCells=\"8\"", "NumberOfCells=\"100000000\""), "r.vtu",
               "expected 800000000");
   // An appended array whose header claims more bytes than the file has.
@@ -205,7 +205,7 @@ TEST(Robustness, DamagedLz4AndLzmaBlocks) {
 TEST(Robustness, AbsurdSizesInLegacyVtk) {
   Guard guard;
   const std::string ascii = fixtureText("mesh_v42_ascii.vtk");
-  expectError(replaced(ascii, "POINTS 13 double", "POINTS 1099511627776 double"), "a.vtk",
+  expectError(replaced(ascii, "POINTS 13 double", "POINTS 4294967295 double"), "a.vtk",
               "too short");
   expectError(replaced(ascii, "CELLS 8 49", "CELLS 8 1099511627776"), "a.vtk", "too short");
   // A count one off names the section and what was found instead of its values.
@@ -244,10 +244,64 @@ TEST(Robustness, AbsurdSizesInLegacyVtk) {
   const std::string bin = fixtureText("mesh_v51_binary.vtk");
   expectError(replaced(bin, "POINTS 13 double", "POINTS 4611686018427387904 double"), "b.vtk",
               "not a count");
-  expectError(replaced(bin, "POINTS 13 double", "POINTS 1125899906842624 double"), "b.vtk",
-              "needs");
+  expectError(replaced(bin, "POINTS 13 double", "POINTS 4294967295 double"), "b.vtk", "needs");
   expectError(replaced(bin, "CELLS 9 41", "CELLS 1000000000 41"), "b.vtk", "file ends");
   expectError(replaced(bin, "vtktypeint64", "vtktypeint128"), "b.vtk", "unknown data type");
+}
+
+// Vertex ids are 32-bit: a file declaring 2^32 points or more is refused by its header alone, with
+// one line naming the limit and what would fit; 2^32 - 1 passes that check and fails only on the
+// data the file lacks (read against the file's size, never allocated).
+TEST(Robustness, PointCountsPast32BitIdsAreRefusedBeforeReading) {
+  Guard guard;
+  const std::string limit = "points: vertex ids are 32-bit, so one mesh holds at most 4294967295";
+  const std::string raw = fixtureText("mesh_appended_raw_none_h64.vtu");
+  expectError(replaced(raw, "NumberOfPoints=\"13\"", "NumberOfPoints=\"4294967296\""), "r.vtu",
+              "r.vtu: declares 4294967296 " + limit);
+  expectError(replaced(raw, "NumberOfPoints=\"13\"", "NumberOfPoints=\"4294967296\""), "r.vtu",
+              "use more ranks");
+  const std::string ascii = fixtureText("mesh_ascii.vtu");
+  expectError(replaced(ascii, "NumberOfPoints=\"13\"", "NumberOfPoints=\"1152921504606846975\""),
+              "a.vtu", "declares 1152921504606846975 " + limit);
+  // Pieces of one .vtu count together (their ids are numbered one after another).
+  const size_t begin = ascii.find("<Piece"), end = ascii.find("</Piece>") + 8;
+  const std::string piece = ascii.substr(begin, end - begin);
+  auto twoPieces = [&](const std::string& secondPoints) {
+    std::string text = ascii;
+    text.insert(
+        end, replaced(piece, "NumberOfPoints=\"13\"", "NumberOfPoints=\"" + secondPoints + "\""));
+    return text;
+  };
+  expectError(twoPieces("4294967283"), "p.vtu", "its pieces declare 4294967296 " + limit);
+  expectError(twoPieces("4294967282"), "p.vtu", "declares 12884901846 values but its text");
+  const std::string vtk = fixtureText("mesh_v51_binary.vtk");
+  expectError(replaced(vtk, "POINTS 13 double", "POINTS 4294967296 double"), "b.vtk",
+              "b.vtk: declares 4294967296 " + limit);
+  const std::string vtkAscii = fixtureText("mesh_v42_ascii.vtk");
+  expectError(replaced(vtkAscii, "POINTS 13 double", "POINTS 4294967296 double"), "a.vtk",
+              "a.vtk: declares 4294967296 " + limit);
+}
+
+// Cell counts are 64-bit throughout the readers: past 2^31 and 2^32 a header is believed only as
+// far as the file's data goes (no int or uint32 wraps into a small, plausible count). Cell origins
+// are 32-bit: asked for (streamed cell data), 2^32 cells are refused before anything is read.
+TEST(Robustness, CellCountsPast2To31And2To32AreCheckedAgainstTheData) {
+  Guard guard;
+  const std::string ascii = fixtureText("mesh_ascii.vtu");
+  expectError(replaced(ascii, "NumberOfCells=\"8\"", "NumberOfCells=\"2147483649\""), "a.vtu",
+              "cell offsets: declares 2147483649 values");
+  const std::string raw = fixtureText("mesh_appended_raw_none_h64.vtu");
+  expectError(replaced(raw, "NumberOfCells=\"8\"", "NumberOfCells=\"4294967297\""), "r.vtu",
+              "expected 34359738376");
+  const std::string vtk = fixtureText("mesh_v51_binary.vtk");
+  expectError(replaced(vtk, "CELLS 9 41", "CELLS 4294967298 41"), "b.vtk", "file ends");
+  ReadOptions origins;
+  origins.cellOrigins = true;
+  const std::string text = replaced(raw, "NumberOfCells=\"8\"", "NumberOfCells=\"4294967296\"");
+  const std::string msg =
+      test::fileErrorOf([&] { readMeshFromMemory(bytesOf(text), "r.vtu", origins); });
+  EXPECT_EQ(msg.rfind("r.vtu: has 4294967296 cells: cell origins are 32-bit", 0), 0u) << msg;
+  EXPECT_NE(msg.find("use more ranks"), std::string::npos) << msg;
 }
 
 // A FIFO opens for reading only once a writer comes: as a mesh, a piece or a piece sized from its

@@ -169,5 +169,50 @@ TEST(MeshBuilder, ClusterIdsFollowFileCells) {
   EXPECT_EQ(m.numClusters(), 10);
 }
 
+std::string pointCountRefusal(uint64_t points) {
+  try {
+    checkPointCount("big.vtu", points, "declares", "use more ranks");
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Vertex ids are 32-bit: 2^32 - 1 points fit (ids 0 .. 2^32 - 2), one more is refused by count
+// alone, naming the file, the limit and what would fit; no points are made.
+TEST(MeshBuilder, PointCountsPast32BitIdsAreRefusedAtTheBoundary) {
+  EXPECT_EQ(kMaxMeshPoints, 0xFFFFFFFFull);
+  EXPECT_EQ(pointCountRefusal(kMaxMeshPoints), "");
+  EXPECT_EQ(pointCountRefusal(kMaxMeshPoints + 1),
+            "big.vtu: declares 4294967296 points: vertex ids are 32-bit, so one mesh holds at most "
+            "4294967295 (use more ranks)");
+  EXPECT_NE(pointCountRefusal(UINT64_MAX), "");
+}
+
+// Cell origins are 32-bit too: kept for up to 2^32 - 1 file cells, refused past that before any
+// cell is read. Without origins, file cell numbers past 2^32 are only counted (64-bit).
+TEST(MeshBuilder, CellOriginsAreKeptUpTo32BitsAndCellNumbersRunPast) {
+  MeshBuilder ok("c.vtu");
+  EXPECT_NO_THROW(ok.keepCellOrigins(0xFFFFFFFFull));
+  MeshBuilder big("c.vtu");
+  try {
+    big.keepCellOrigins(uint64_t(1) << 32);
+    ADD_FAILURE() << "2^32 cells' origins kept";
+  } catch (const FileError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("c.vtu: has 4294967296 cells", 0), 0u) << msg;
+    EXPECT_NE(msg.find("at most 4294967295"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("use more ranks"), std::string::npos) << msg;
+  }
+  MeshBuilder far("far.vtu");
+  far.setFileCells((uint64_t(1) << 33) + 1);
+  far.setPoints({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  const int64_t tet[4] = {0, 1, 2, 3};
+  far.addVtkCell(10, tet, uint64_t(1) << 33);
+  const UnstructuredMesh m = far.finish();
+  EXPECT_EQ(m.numCells(), 1u);
+  EXPECT_TRUE(m.cellOrigin.empty());  // none asked for, none that could be kept
+}
+
 }  // namespace
 }  // namespace sm::mesh

@@ -82,5 +82,17 @@ TEST(Cache, EveryTruncationAndByteFlipIsCaught) {
   }
 }
 
+// A cache whose counts pass the shaders' 32-bit indices is refused as corrupt (a cache that
+// preparation wrote never holds one), before its arrays are looked at.
+TEST(Cache, CountsPastTheShaderIndexRangeAreCorrupt) {
+  auto f = prepared();
+  f.rank.elementCount[gpu::SM_HEX] = maxElementsOnRank(gpu::SM_HEX, f.rank.compact) + 1;
+  std::string path = test::outputDir("cache") + "/huge.smprep";
+  writeCache(path, f.rank, f.key);
+  auto r = readCache(path, f.key);
+  EXPECT_EQ(r.status, CacheStatus::Corrupt);
+  EXPECT_NE(r.reason.find("hexahedra on one rank"), std::string::npos) << r.reason;
+}
+
 }  // namespace
 }  // namespace sm::prep

@@ -80,6 +80,61 @@ TEST(Vk, ContextsMadeOneAfterAnotherKeepFindingTheDriver) {
   }
 }
 
+// A buffer's size and its memory are checked against the device's maxBufferSize and
+// maxMemoryAllocationSize by size alone (nothing allocated): at each limit it passes, one byte more
+// is refused in one line naming the buffer, its size, the limit and how many more ranks would fit.
+TEST(BufferLimits, AtEachLimitABufferPassesAndOneByteMoreIsRefused) {
+  const uint64_t gib = uint64_t(1) << 30;
+  const BufferLimits limits{4 * gib - 1, 2 * gib};  // lavapipe's
+  EXPECT_EQ(bufferSizeError("tetrahedra records", 2 * gib, 2 * gib, limits), "");
+  EXPECT_EQ(bufferSizeError("tetrahedra records", 2 * gib + 1, 2 * gib + 1, limits),
+            "buffer 'tetrahedra records' needs 2.00 GiB (2147483649 bytes), more than the device's "
+            "largest allocation (maxMemoryAllocationSize, 2.00 GiB (2147483648 bytes)); use more "
+            "ranks (at least 2 times as many)");
+  // The memory the device asks for may be more than the buffer holds: that is checked too.
+  EXPECT_NE(bufferSizeError("vertices", 2 * gib, 2 * gib + 256, limits), "");
+  const BufferLimits sizeOnly{4 * gib - 1, UINT64_MAX};
+  EXPECT_EQ(bufferSizeError("shell boxes", 4 * gib - 1, 4 * gib - 1, sizeOnly), "");
+  const std::string msg = bufferSizeError("shell boxes", 4 * gib, 4 * gib, sizeOnly);
+  EXPECT_NE(msg.find("'shell boxes' needs 4.00 GiB (4294967296 bytes)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("largest buffer (maxBufferSize, 4.00 GiB (4294967295 bytes))"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("use more ranks (at least 2 times as many)"), std::string::npos) << msg;
+  // Far past: the ranks needed grow with the size; a device that gives no limit takes anything.
+  const BufferLimits allocationOnly{UINT64_MAX, 2 * gib};
+  EXPECT_NE(bufferSizeError("hexahedra records", 5 * gib, 5 * gib, allocationOnly)
+                .find("at least 3 times"),
+            std::string::npos);
+  EXPECT_EQ(bufferSizeError("any", UINT64_MAX, UINT64_MAX, BufferLimits{}), "");
+}
+
+// On the device: the context reads its limits, and a buffer one byte past them is refused before
+// anything is created or allocated (no device memory held, no validation message).
+TEST(Vk, BufferPastTheDeviceLimitsIsRefusedBeforeAllocating) {
+  ContextOptions o;
+  o.rayTracing = false;
+  Context ctx(o);
+  const BufferLimits& limits = ctx.bufferLimits();
+  EXPECT_GE(limits.maxAllocationSize, uint64_t(1) << 30);  // the spec's minimum
+  EXPECT_GE(limits.maxBufferSize, uint64_t(1) << 30);
+  const uint64_t limit = std::min(limits.maxBufferSize, limits.maxAllocationSize);
+  ASSERT_LT(limit, UINT64_MAX) << "the device gives no buffer limit";
+  const uint64_t before = ctx.deviceMemoryInUse();
+  try {
+    Buffer b(ctx, limit + 1, kStorageUsage, MemoryUse::Device, "too large");
+    ADD_FAILURE() << "a buffer of " << limit + 1 << " bytes was made";
+  } catch (const BufferLimitError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("buffer 'too large' needs ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(std::to_string(limit) + " bytes"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("use more ranks"), std::string::npos) << msg;
+    EXPECT_EQ(e.requested(), limit + 1);
+  }
+  EXPECT_EQ(ctx.deviceMemoryInUse(), before);
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+}
+
 TEST(Vk, DeviceErrorListsWhatEachDeviceLacks) {
   ContextOptions o;
   o.device = "no-such-device-name";
