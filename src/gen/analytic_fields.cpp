@@ -79,8 +79,12 @@ void setField(mesh::UnstructuredMesh& mesh, const std::string& name,
 }  // namespace
 
 void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps) {
+  addAnalyticFields(mesh, steps, mesh.bounds());
+}
+
+void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps, const mesh::Bounds& b,
+                       unsigned threads) {
   if (steps < 1) throw Error("the number of time steps must be at least 1, got ", steps);
-  const mesh::Bounds b = mesh.bounds();
   const glm::dvec3 lo = b.lo, extent = glm::max(b.extent(), glm::dvec3(1e-300));
   const size_t n = mesh.points.size();
   std::vector<std::vector<float>> linear(steps), shock(steps), vortex(steps), density(steps);
@@ -92,15 +96,18 @@ void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps) {
     shock[s].resize(n);
     vortex[s].resize(n);
     density[s].resize(n);
-    parallelFor(int64_t(n), [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) {
-        const glm::dvec3 u = (mesh.points[i] - lo) / extent;
-        linear[s][i] = float(linearField(u));
-        shock[s][i] = float(shockField(u, t));
-        vortex[s][i] = float(vortexField(u, t));
-        density[s][i] = float(densityField(mesh.points[i], t));
-      }
-    });
+    parallelFor(
+        int64_t(n),
+        [&](int64_t begin, int64_t end) {
+          for (int64_t i = begin; i < end; ++i) {
+            const glm::dvec3 u = (mesh.points[i] - lo) / extent;
+            linear[s][i] = float(linearField(u));
+            shock[s][i] = float(shockField(u, t));
+            vortex[s][i] = float(vortexField(u, t));
+            density[s][i] = float(densityField(mesh.points[i], t));
+          }
+        },
+        threads);
   }
   setField(mesh, "linear", std::move(linear));
   setField(mesh, "shock", std::move(shock));

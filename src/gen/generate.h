@@ -55,5 +55,9 @@ uint64_t cellsPerCube(CubeSplit split);
 //   "density" a bow shock, shock layer and swaying wake around a unit body at the origin facing -x
 //             (world units: made for the capsule and the lander).
 void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps);
+// The same normalised to `domain` instead of the mesh's own bounds (a piece of a larger mesh then
+// takes the values the whole mesh would), on up to `threads` threads (0: all).
+void addAnalyticFields(mesh::UnstructuredMesh& mesh, int steps, const mesh::Bounds& domain,
+                       unsigned threads = 0);
 
 }  // namespace sm::gen

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -147,6 +148,27 @@ struct WriteOptions {
 // renamed when complete.
 void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
                const WriteOptions& options = {});
+// Writes a .pvtu one piece at a time, so that a generator's memory is bounded by a piece, not
+// the mesh: pieces go to staging names beside their final ones and are renamed into place, the
+// index last, only by finish(); destroyed unfinished, it removes what it staged. `layout` gives
+// the field names, their step counts and the time values (its geometry is not used); every piece
+// must carry those fields. write() may run on several threads at once for different pieces.
+class PvtuPieceWriter {
+ public:
+  PvtuPieceWriter(const std::string& path, uint64_t pieces, const mesh::UnstructuredMesh& layout,
+                  const WriteOptions& options = {});
+  ~PvtuPieceWriter();
+  PvtuPieceWriter(const PvtuPieceWriter&) = delete;
+  PvtuPieceWriter& operator=(const PvtuPieceWriter&) = delete;
+  void write(uint64_t piece, const mesh::UnstructuredMesh& mesh);
+  void finish();
+
+ private:
+  std::string pieceFileName(uint64_t piece) const;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // Writes a time series: PATH_STEM/PATH_STEM_t<K>.pvtu for each step K (every field at step K, or
 // its last), and the .pvd at `path` naming them with mesh.timeValues (or K when there are none),
 // written last. readMesh(path) reads it back as the same fields and steps.

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
+#include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/progress.h"
@@ -134,38 +136,87 @@ std::string pvtuIndex(const mesh::UnstructuredMesh& mesh, const std::string& pie
 
 }  // namespace
 
-void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
-               const WriteOptions& options) {
-  const fs::path p(path);
-  const std::string stem = p.stem().string();
-  const fs::path folder = p.parent_path() / stem;
+struct PvtuPieceWriter::Impl {
+  fs::path path, folder;
+  std::string stem;
+  mesh::UnstructuredMesh layout;  // names, step counts and times; no geometry
+  WriteOptions options;
+  std::vector<std::string> staged;  // per piece
+  std::unique_ptr<StagedPieces> pieces;
+  bool finished = false;
+};
+
+PvtuPieceWriter::PvtuPieceWriter(const std::string& path, uint64_t pieces,
+                                 const mesh::UnstructuredMesh& layout, const WriteOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& w = *impl_;
+  w.path = fs::path(path);
+  w.stem = w.path.stem().string();
+  w.folder = w.path.parent_path() / w.stem;
+  w.options = options;
+  w.layout.source = layout.source;
+  w.layout.timeValues = layout.timeValues;
+  for (const mesh::Field& f : layout.fields)
+    w.layout.fields.push_back({f.name, std::vector<std::vector<float>>(f.numSteps())});
+  for (const mesh::CellField& f : layout.cellFields)
+    w.layout.cellFields.push_back({f.name, decltype(f.steps)(f.steps.size())});
   std::error_code ec;
   // Checked before any piece is written: the index is written last, and failing then would leave
   // pieces without one.
-  if (fs::exists(p, ec) && !fs::is_regular_file(p, ec))
+  if (fs::exists(w.path, ec) && !fs::is_regular_file(w.path, ec))
     throw FileError(path, "cannot write: exists and is not a regular file");
+  const bool created = fs::create_directories(w.folder, ec);
+  if (ec)
+    throw FileError(w.folder.string(), "cannot create the folder for the pieces: ", ec.message());
+  w.pieces = std::make_unique<StagedPieces>(w.folder, created);
+  // Staged names are handed out here, so that write() may run on several threads at once.
+  for (uint64_t k = 0; k < pieces; ++k)
+    w.staged.push_back(w.pieces->stage(w.folder / pieceFileName(k)));
+}
+
+PvtuPieceWriter::~PvtuPieceWriter() = default;
+
+std::string PvtuPieceWriter::pieceFileName(uint64_t k) const {
+  return concat(impl_->stem, "_", k, ".vtu");
+}
+
+void PvtuPieceWriter::write(uint64_t k, const mesh::UnstructuredMesh& piece) {
+  SM_CHECK_LT(k, impl_->staged.size());
+  writeVtu(impl_->staged[k], piece, impl_->options);
+}
+
+void PvtuPieceWriter::finish() {
+  Impl& w = *impl_;
+  SM_CHECK(!w.finished);
+  std::string pieces;
+  for (uint64_t k = 0; k < w.staged.size(); ++k)
+    pieces += concat("    <Piece Source=\"", xmlEscape(w.stem + "/" + pieceFileName(k)), "\"/>\n");
+  const std::string x = pvtuIndex(w.layout, pieces);
+  writeBytesAtomically(w.pieces->stage(w.path),
+                       {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
+  w.pieces->commit();
+  w.finished = true;
+}
+
+void writePvtu(const std::string& path, const mesh::UnstructuredMesh& mesh,
+               const WriteOptions& options) {
   // One piece per cluster id, empty ones included: sparse ids would mean absurdly many files.
   if (uint64_t(mesh.numClusters()) > mesh.numCells() + 4096)
     throw Error(path, ": the mesh numbers its clusters up to ", mesh.numClusters() - 1,
                 " but has only ", mesh.numCells(), " cells; renumber them before writing pieces");
-  const bool created = fs::create_directories(folder, ec);
-  if (ec)
-    throw FileError(folder.string(), "cannot create the folder for the pieces: ", ec.message());
-  StagedPieces staged(folder, created);
+  for (mesh::CellType t : mesh::kAllCellTypes)  // cellsByCluster numbers them in 32 bits
+    if (mesh.numCells(t) > 0xFFFFFFFFull)
+      throw Error(path, ": ", mesh.numCells(t), " ", mesh::cellTypePluralName(t),
+                  " in one mesh; writing pieces from one mesh holds at most 4294967295 of a type");
   const auto byCluster = cellsByCluster(mesh);
+  PvtuPieceWriter writer(path, byCluster.size(), mesh, options);
   std::vector<uint32_t> local(mesh.points.size(), 0xFFFFFFFFu);
-  std::string pieces;
   Progress progress("piece written", byCluster.size());
   for (size_t k = 0; k < byCluster.size(); ++k) {
-    const std::string file = concat(stem, "_", k, ".vtu");
-    writeVtu(staged.stage(folder / file), extractPiece(mesh, int32_t(k), byCluster[k], local),
-             options);
-    pieces += concat("    <Piece Source=\"", xmlEscape(stem + "/" + file), "\"/>\n");
+    writer.write(k, extractPiece(mesh, int32_t(k), byCluster[k], local));
     progress.advance();
   }
-  const std::string x = pvtuIndex(mesh, pieces);
-  writeBytesAtomically(staged.stage(p), {reinterpret_cast<const uint8_t*>(x.data()), x.size()});
-  staged.commit();
+  writer.finish();
 }
 
 // A time series the way solvers write one: a .pvtu per step, holding its fields at that step, and
