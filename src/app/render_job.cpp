@@ -169,8 +169,11 @@ render::FrameTimings renderFrames(const Frames& f) {
     const double renderMs = renderTimer.ms(), frameMs = frameTimer.ms();
     stats.addFrame(int(i / perRun), stepOf(i), frameMs, renderMs, scalars);
     if (i < perRun) writeFrame(f, f.plan[i], frame);
+    // A rank's memory must not grow with the frames it renders: compared by bench scale.
+    if (i == 0) f.report.setFrameMemory("host_bytes_after_first_frame_per_rank");
     progress.advance();
   }
+  f.report.setFrameMemory("host_bytes_after_last_frame_per_rank");
   if (total > 1) f.report.setSequence(stats.summary(f.gpu, f.coll));
   return first.value_or(render::FrameTimings{});
 }
@@ -272,6 +275,9 @@ void runRender(const RenderJob& job, Collectives& coll) {
     throw Error("--background transparent: --out '", job.out,
                 "' is a PFM, which has no alpha channel; write a .png");
   Timer total;
+  // What the process holds before any mesh (code, libraries, MPI): the part of its memory that
+  // does not grow with the mesh, which bench scale sets apart from what does.
+  const uint64_t residentAtStart = currentResidentBytes();
   ShareOptions shareOptions = job.share;
   shareOptions.streamSteps = true;
   // Only the field rendered is read: a solver's file may hold dozens, and a component ("v[2]")
@@ -298,15 +304,20 @@ void runRender(const RenderJob& job, Collectives& coll) {
   PreparedShare prepared =
       prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, coll.rank(), coll.size());
   const double prepSeconds = prepTimer.seconds();
+  const uint64_t peakAfterPrepare = peakResidentBytes();  // before the device holds a copy
   vk::Context ctx(contextOptions(job));
   // Out of device memory becomes a message that says what would fit, not a Vulkan call's name.
   std::unique_ptr<render::GpuScene> scene;
+  Timer uploadTimer;
   try {
     scene = std::make_unique<render::GpuScene>(ctx, prepared.rank);
+  } catch (const vk::BufferLimitError& e) {
+    throw Error(e.what());  // names the buffer, the device's limit and how many more ranks
   } catch (const vk::DeviceMemoryError& e) {
     throw Error(sceneMemoryAdvice(e, ctx, prepared.rank, coll.size()));
   }
   render::GpuScene& gpu = *scene;
+  const double uploadSeconds = uploadTimer.seconds();  // buffers and acceleration structures
   try {
     comp::DeepCompositor compositor(ctx, coll.communicator(), job.width, job.height, job.lists);
     render::Renderer renderer(ctx, gpu, compositor);
@@ -314,7 +325,8 @@ void runRender(const RenderJob& job, Collectives& coll) {
     StatsReport report(job, coll);
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,
                     ctx.deviceName(), vk::tracerName(renderer.tracer()), s);
-    report.setHostMemory(peakAfterLoad);
+    report.setHostMemory(residentAtStart, peakAfterLoad, peakAfterPrepare);
+    report.setUpload(uploadSeconds);
     FrameWriter writer;
     const render::FrameTimings first =
         renderFrames({job, plan, source, field, prepared.rank, gpu, renderer, compositor, s, report,

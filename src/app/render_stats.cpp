@@ -69,10 +69,12 @@ void StatsReport::setSetup(double loadSeconds, double prepSeconds, bool fromCach
   json_["prepare_from_cache"] = fromCache;
   json_["elements"] = coll_.sum(rank.numElements());
   json_["elements_per_rank"] = spread(double(rank.numElements()));
+  json_["elements_rank0"] = rank.numElements();
   json_["shell_triangles"] = coll_.sum(rank.numShellTriangles());
   json_["shell_triangles_per_rank"] = spread(double(rank.numShellTriangles()));
   json_["device_bytes_max_rank"] = coll_.max(double(gpu.deviceBytes()));
   json_["memory_rank0"] = mem;
+  preparedBytes_ = mem.preparedBytes();
 }
 
 void StatsReport::setStartup(const vk::Context& ctx, double firstFrameMs,
@@ -99,10 +101,27 @@ void StatsReport::setStartup(const vk::Context& ctx, double firstFrameMs,
   json_["startup"] = j;
 }
 
-void StatsReport::setHostMemory(uint64_t peakAfterLoad) {
+void StatsReport::setHostMemory(uint64_t residentAtStart, uint64_t peakAfterLoad,
+                                uint64_t peakAfterPrepare) {
+  json_["host_bytes_at_start_per_rank"] = spread(double(residentAtStart));
+  json_["host_peak_bytes_after_prepare_per_rank"] = spread(double(peakAfterPrepare));
+  // What reading and preparing held beyond the process's start, over this rank's own prepared
+  // bytes: ranks hold unequal shares, so a ratio of maxima would mix ranks.
+  json_["prepared_bytes_per_rank"] = spread(double(preparedBytes_));
+  const double grown = double(peakAfterPrepare) - double(residentAtStart);
+  json_["host_mesh_peak_over_prepared_per_rank"] =
+      spread(preparedBytes_ ? grown / double(preparedBytes_) : 0.0);
   const double now = double(peakResidentBytes());
   json_["host_peak_bytes_after_load_per_rank"] = spread(double(peakAfterLoad));
   json_["host_peak_bytes_after_setup_per_rank"] = spread(now);
+}
+
+void StatsReport::setUpload(double seconds) {
+  json_["scene_upload_seconds_max"] = coll_.max(seconds);
+}
+
+void StatsReport::setFrameMemory(const char* key) {
+  if (wanted()) json_[key] = spread(double(currentResidentBytes()));
 }
 
 bool StatsReport::wanted() const {

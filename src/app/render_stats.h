@@ -33,9 +33,11 @@ class StatsReport {
                 const prep::PreparedRank& rank, const render::GpuScene& gpu,
                 const std::string& device, const std::string& tracer,
                 const render::RenderSettings& s);
-  // Collective. Host memory per rank: the peak resident size once the mesh was loaded (before
-  // preparation and the device) and now (after setup: the driver's own memory included).
-  void setHostMemory(uint64_t peakAfterLoad);
+  // Collective, after setSetup. Host memory per rank: resident at start, the peak once the mesh
+  // was loaded and once prepared (before the device) and now (after setup: the driver included).
+  void setHostMemory(uint64_t residentAtStart, uint64_t peakAfterLoad, uint64_t peakAfterPrepare);
+  void setUpload(double seconds);        // the scene's buffers and acceleration structures
+  void setFrameMemory(const char* key);  // resident bytes now, per rank (collective)
   // Collective when statistics are asked for (gathers every rank's compositing statistics).
   void addFrame(uint64_t step, const scene::Camera& camera, const render::FrameResult& frame,
                 const render::Renderer& renderer, comp::DeepCompositor& compositor);
@@ -51,6 +53,7 @@ class StatsReport {
   const RenderJob& job_;
   Collectives& coll_;
   nlohmann::json json_;
+  uint64_t preparedBytes_ = 0;  // this rank's, from setSetup (which setHostMemory follows)
   // Counted with or without --stats: an overflow must be said either way.
   uint64_t overflow_ = 0, overflowFrames_ = 0, frames_ = 0;
   bool wanted() const;

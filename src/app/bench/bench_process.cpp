@@ -1,6 +1,7 @@
 // Child processes of the benchmarks: forked measurements, mesh generation and the Python peers.
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -94,10 +95,22 @@ std::string scriptPath(const std::string& file) {
               SHELLMARCH_BENCH_SCRIPT_DIR, ")");
 }
 
-// Exit status of argv run with stdout and stderr sent to logPath and `env` ("NAME=value") added
-// to the environment; -1 if it could not start.
-int spawnLogged(const std::vector<std::string>& argv, const std::string& logPath,
-                const std::vector<std::string>& env = {}) {
+std::string logTail(const std::string& logPath) {
+  std::string text;
+  try {
+    text = readTextFile(logPath);
+  } catch (const Error&) {
+    return "";
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  if (text.size() > 600) text = "..." + text.substr(text.size() - 600);
+  return text;
+}
+
+}  // namespace
+
+SpawnResult spawnLogged(const std::vector<std::string>& argv, const std::string& logPath,
+                        const std::vector<std::string>& env) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
@@ -120,27 +133,19 @@ int spawnLogged(const std::vector<std::string>& argv, const std::string& logPath
   pid_t pid = 0;
   int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
+  SpawnResult r;
+  if (rc != 0) return r;
+  // wait4, not waitpid: its rusage holds the peak resident size of the child and of every
+  // descendant it reaped, so mpirun's is its largest rank's (Linux: ru_maxrss in KiB).
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  r.peakRssBytes = uint64_t(usage.ru_maxrss) * 1024;
+  r.status =
+      WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  return r;
 }
-
-std::string logTail(const std::string& logPath) {
-  std::string text;
-  try {
-    text = readTextFile(logPath);
-  } catch (const Error&) {
-    return "";
-  }
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  if (text.size() > 600) text = "..." + text.substr(text.size() - 600);
-  return text;
-}
-
-}  // namespace
 
 nlohmann::json runInChild(const std::function<nlohmann::json()>& fn) {
   int fds[2];
@@ -201,7 +206,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector
                          const std::string& logPath) {
   const auto start = std::chrono::steady_clock::now();
   ProcessResult r;
-  r.status = spawnLogged(argv, logPath, env);
+  r.status = spawnLogged(argv, logPath, env).status;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (r.status != 0)
     r.error = r.status < 0 ? concat("could not start ", argv[0]) : logTail(logPath);

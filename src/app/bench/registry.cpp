@@ -2,6 +2,8 @@
 
 namespace sm::app::bench {
 
+void configureScaleBench(CLI::App& cmd);  // bench_scale.cpp
+
 const std::vector<BenchCommand>& benchCommands() {
   static const std::vector<BenchCommand> all = {
       {"prep",
@@ -28,6 +30,10 @@ const std::vector<BenchCommand>& benchCommands() {
        "The two tracers (ray queries, ray tracing pipeline) taking turns on one view: frames, "
        "stages and throughput of each, their ratio per round, and whether their images agree",
        configureTracerBench},
+      {"scale",
+       "Cost curve over element counts and ranks: generate, load, prepare, first image and warm "
+       "frames per stage, growth exponents, strong and weak scaling, bytes per element",
+       configureScaleBench},
       {"png",
        "PNG encoding of a rendered frame: stb_image_write against libpng at several zlib levels, "
        "bytes and time to encode",
