@@ -72,8 +72,6 @@ gen::CfdMeshOptions demoMeshOptions();
 // takes minutes for millions of elements) when it is not there yet.
 std::string generatedMesh(const std::string& workDir, const gen::CfdMeshOptions& options);
 
-// A Python peer (a VTK script shipped beside the tool). The script writes its result as JSON to
-// the file given after --json; stdout and stderr go to logPath.
 // argv with stdout and stderr sent to logPath and `env` ("NAME=value") added to the environment:
 // its exit status (-1: could not start; 128 + signal when killed) and the peak resident size of
 // it and of every descendant it reaped (for mpirun: its largest rank).
@@ -84,6 +82,8 @@ struct SpawnResult {
 SpawnResult spawnLogged(const std::vector<std::string>& argv, const std::string& logPath,
                         const std::vector<std::string>& env = {});
 
+// A Python peer (a VTK script shipped beside the tool). The script writes its result as JSON to
+// the file given after --json; stdout and stderr go to logPath.
 struct PeerRun {
   bool ok = false;
   std::string error;  // why not, for the report (missing Python or VTK, a crash, ...)

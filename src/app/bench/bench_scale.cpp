@@ -159,33 +159,16 @@ Json measureRow(const ScaleArgs& a, const ScalePlan& p, const Json& gen, int ran
   return row;
 }
 
-// What render's --stats-json lacks for this benchmark, as the report says it.
-Json notReported(const Json& report) {
-  Json out = Json::array();
-  const Json* setup = nullptr;
-  for (const Json& row : report["rows"])
-    if (row["ok"].get<bool>() && !setup) setup = &row["setup"];
-  if (!setup || !std::isfinite(jsonNumber(*setup, "upload_s")))
-    out.push_back(
-        "upload of the device scene and its acceleration structure build (a render that "
-        "predates scene_upload_seconds_max): both are inside 'other', with MPI start and exit");
-  out.push_back(
-      "wall time from process start to the first image: estimated as the process's wall time "
-      "less its timed frames");
-  if (!setup || !std::isfinite(jsonNumber(*setup, "host_after_last_frame_bytes")))
-    out.push_back(
-        "host memory after the first and the last frame (only the peak after setup): the frames "
-        "check compares whole-process peaks (wait4) of 2 and N frames");
-  if (!setup || !setup->contains("elements_rank0") || (*setup)["elements_rank0"].is_null())
-    out.push_back(
-        "rank 0's element count (a render that predates elements_rank0): bytes per element on "
-        "several ranks use the average");
-  return out;
+// What the report estimates rather than measures, as it says it.
+Json notReported() {
+  return Json::array(
+      {"wall time from process start to the first image: estimated as the "
+       "process's wall time less its timed frames"});
 }
 
 void finishReport(const ScaleArgs& a, Json& report) {
   report["analysis"] = analyseScale(report);
-  report["not_reported"] = notReported(report);
+  report["not_reported"] = notReported();
   const std::string md = scaleTable(report) + analysisText(report);
   const Json& o = report["options"];
   std::printf(
@@ -257,8 +240,8 @@ void configureScaleBench(CLI::App& cmd) {
                "Keep each generated mesh (reused by the next --keep run) instead of deleting it "
                "after its rows");
   cmd.add_option("--frames-check", a->framesCheck,
-                 "Also render the smallest mesh N frames (e.g. 200) against 2: does a rank's "
-                 "memory grow with frames? (0: no check)")
+                 "Also render the smallest mesh N frames (e.g. 200): does a rank's memory after "
+                 "the last frame exceed that after the first? (0: no check)")
       ->capture_default_str();
   cmd.add_option("--mpirun", a->mpirun, "MPI launcher (Open MPI's: --oversubscribe is passed)")
       ->capture_default_str();

@@ -49,10 +49,10 @@ std::string bytesTable(const Json& report) {
     if (m["ranks"] != report["options"]["ranks"][0]) continue;
     const Json& b = m["bytes_per_element"];
     const Json& s = m["shares"];
-    t.add({count(jsonNumber(m, "elements_rank0")) + (m["elements_rank0_exact"] ? "" : " (avg)"),
-           std::to_string(m["ranks"].get<int>()), fixed(jsonNumber(b, "vertices"), 2),
-           fixed(jsonNumber(b, "connectivity"), 2), fixed(jsonNumber(b, "compacted_elements"), 2),
-           fixed(jsonNumber(b, "shell"), 2), fixed(jsonNumber(b, "acceleration_structures"), 2),
+    t.add({count(jsonNumber(m, "elements_rank0")), std::to_string(m["ranks"].get<int>()),
+           fixed(jsonNumber(b, "vertices"), 2), fixed(jsonNumber(b, "connectivity"), 2),
+           fixed(jsonNumber(b, "compacted_elements"), 2), fixed(jsonNumber(b, "shell"), 2),
+           fixed(jsonNumber(b, "acceleration_structures"), 2),
            fixed(jsonNumber(b, "scalars_per_step"), 2), fixed(jsonNumber(b, "prepared_bytes"), 2),
            percent(jsonNumber(s, "connectivity")), percent(jsonNumber(s, "compacted_elements")),
            percent(jsonNumber(s, "shell_and_bvh"))});

@@ -65,9 +65,7 @@ nlohmann::json timeRecord(const nlohmann::json& stats, double wallSeconds, int r
   r["context_s"] = jsonNumber(stats, "startup.context_ms") / 1e3;
   r["pipelines_s"] = jsonNumber(stats, "startup.pipelines_ms") / 1e3;  // within the first frame
   r["first_frame_s"] = jsonNumber(stats, "startup.first_frame_ms") / 1e3;
-  // Not in render's statistics yet (render builds its GpuScene untimed): NaN (null) until it is.
-  r["upload_s"] = jsonNumber(stats, "scene_upload_seconds_max");
-  r["acceleration_build_s"] = jsonNumber(stats, "acceleration_build_seconds_max");
+  r["upload_s"] = jsonNumber(stats, "scene_upload_seconds_max");  // acceleration structures too
   // render times frames only when it renders more than one; a single frame is the cold one.
   double warm = jsonNumber(stats, "sequence.frame_ms_mean");
   if (!std::isfinite(warm) && stats.contains("frames") && !stats["frames"].empty())
@@ -78,13 +76,10 @@ nlohmann::json timeRecord(const nlohmann::json& stats, double wallSeconds, int r
   // A plain render (one frame, cold) would have ended about the timed frames sooner.
   const double firstImage = wallSeconds - repeat * warm / 1e3;
   r["first_image_s"] = firstImage;
-  // The rest: MPI start, the scene's upload and acceleration structure build (while render does
-  // not time them), exit.
+  // The rest: MPI start and exit.
   double known = 0;
-  for (const char* k : {"load_s", "prepare_s", "context_s", "first_frame_s"})
+  for (const char* k : {"load_s", "prepare_s", "context_s", "upload_s", "first_frame_s"})
     known += r[k].get<double>();
-  for (const char* k : {"upload_s", "acceleration_build_s"})
-    if (std::isfinite(r[k].get<double>())) known += r[k].get<double>();
   r["other_s"] = firstImage - known;
   return r;
 }
@@ -96,7 +91,6 @@ void addMemory(nlohmann::json& r, const nlohmann::json& stats) {
   r["elements_rank0"] = stats.value("elements_rank0", nlohmann::json());
   r["host_peak_after_load_bytes"] = jsonNumber(stats, "host_peak_bytes_after_load_per_rank.max");
   r["host_peak_after_setup_bytes"] = jsonNumber(stats, "host_peak_bytes_after_setup_per_rank.max");
-  // Not in render's statistics yet: what the frames check would compare.
   r["host_after_first_frame_bytes"] =
       jsonNumber(stats, "host_bytes_after_first_frame_per_rank.max");
   r["host_after_last_frame_bytes"] = jsonNumber(stats, "host_bytes_after_last_frame_per_rank.max");
@@ -111,14 +105,8 @@ void addMemory(nlohmann::json& r, const nlohmann::json& stats) {
   r["host_at_start_bytes"] = jsonNumber(stats, "host_bytes_at_start_per_rank.max");
   r["host_peak_after_prepare_bytes"] =
       jsonNumber(stats, "host_peak_bytes_after_prepare_per_rank.max");
-  // Each rank's own ratio (ranks hold unequal shares); a render that predates it: the largest
-  // rank's peak over rank 0's prepared bytes.
-  const double perRank = jsonNumber(stats, "host_mesh_peak_over_prepared_per_rank.max");
-  r["mesh_peak_over_prepared"] = std::isfinite(perRank)
-                                     ? perRank
-                                     : (r["host_peak_after_prepare_bytes"].get<double>() -
-                                        r["host_at_start_bytes"].get<double>()) /
-                                           prepared;
+  // Each rank's own ratio: ranks hold unequal shares, so a ratio of maxima would mix ranks.
+  r["mesh_peak_over_prepared"] = jsonNumber(stats, "host_mesh_peak_over_prepared_per_rank.max");
 }
 
 }  // namespace
@@ -252,27 +240,22 @@ nlohmann::json renderOnce(const ScaleArgs& a, const std::string& mesh, const std
 
 nlohmann::json framesCheck(const ScaleArgs& a, const std::string& mesh, int ranks, int w, int h,
                            int frames) {
-  const nlohmann::json few = renderOnce(a, mesh, "frames-check-2", ranks, w, h, 2);
   const nlohmann::json many =
       renderOnce(a, mesh, concat("frames-check-", frames), ranks, w, h, frames);
   nlohmann::json j = {{"frames", frames}, {"ranks", ranks}, {"width", w}, {"height", h}};
-  if (!few["ok"].get<bool>() || !many["ok"].get<bool>()) {
-    j["error"] = few["ok"].get<bool>() ? many["error"] : few["error"];
+  if (!many["ok"].get<bool>()) {
+    j["error"] = many["error"];
     return j;
   }
-  // After the first and after the last frame, where render reports them; else the whole
-  // process's peak (wait4), which the load and preparation may hide a slow growth under.
-  const double first = jsonNumber(many, "host_after_first_frame_bytes");
-  const double last = jsonNumber(many, "host_after_last_frame_bytes");
-  const bool exact = std::isfinite(first) && std::isfinite(last);
-  const double before = exact ? first : few["process_peak_rss_bytes"].get<double>();
-  const double after = exact ? last : many["process_peak_rss_bytes"].get<double>();
-  j["measure"] = exact ? "host bytes after the first and the last frame (render --stats-json)"
-                       : "peak resident size of the largest rank, 2 frames against N (wait4)";
+  // After the first and after the last frame: not the whole process's peak, under which the load
+  // and preparation would hide a slow growth.
+  const double before = jsonNumber(many, "host_after_first_frame_bytes");
+  const double after = jsonNumber(many, "host_after_last_frame_bytes");
+  j["measure"] = "host bytes after the first and the last frame (render --stats-json)";
   j["before_bytes"] = before;
   j["after_bytes"] = after;
   j["growth_bytes"] = after - before;
-  j["growth_bytes_per_frame"] = (after - before) / double(frames - (exact ? 1 : 2));
+  j["growth_bytes_per_frame"] = (after - before) / double(frames - 1);
   // Allocator noise is a few MiB; a leak of a frame's buffers would be that many times frames.
   j["grows"] = after - before > std::max(8 * kMiB, 0.02 * before);
   return j;
