@@ -15,7 +15,7 @@ shift || true
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=(prep render first-image accuracy features time compositor)
 work=${SHELLMARCH_BENCH_WORK:-out/bench}
-sm=build/src/app/shellmarch
+sm=build/bin/shellmarch
 comp=build/compositor/shellmarch_bench_compositor
 mkdir -p "$out" "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1

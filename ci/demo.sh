@@ -10,10 +10,10 @@ bash ci/build.sh shellmarch shellmarch_python  # the program, and `import shellm
 export MESA_SHADER_CACHE_DIR=${MESA_SHADER_CACHE_DIR:-$PWD/build/mesa-shader-cache}
 mkdir -p demo
 if [ ! -f demo/capsule.pvtu ]; then
-  ./build/src/app/shellmarch generate --body capsule --elements 300000 --clusters 8 --steps 4 --hex-block \
+  ./build/bin/shellmarch generate --body capsule --elements 300000 --clusters 8 --steps 4 --hex-block \
     --out demo/capsule.pvtu
 fi
 # The bow shock, shock layer and wake of the capsule (the "density" field), looking from upstream.
-./build/src/app/shellmarch render demo/capsule.pvtu --field density --size 768x576 --eye -6,-9,4.5 --at 2.5,0,0 \
+./build/bin/shellmarch render demo/capsule.pvtu --field density --size 768x576 --eye -6,-9,4.5 --at 2.5,0,0 \
   --fovy 32 --colormap inferno --range 1.5,6 --opacity-scale 2 --legend --out demo/demo.png --stats
 echo "demo: wrote $PWD/demo/demo.png"

@@ -20,11 +20,11 @@ root=$stage/shellmarch
 mkdir -p "$root/bin" "$root/lib" "$root/layers" "$root/share/shellmarch/bench"
 
 # The app, and the test binaries whose cases need a Vulkan device (ctest label "gpu").
-bins=("$build/src/app/shellmarch" "$build/tests/render/test_render" "$build/tests/vk/test_vk"
+bins=("$build/bin/shellmarch" "$build/bin/shellmarch-bench" "$build/tests/render/test_render" "$build/tests/vk/test_vk"
   "$build/tests/compositor/test_compositor" "$build/tests/insitu/test_insitu"
   "$build/compositor/shellmarch_bench_compositor" "$build/tests/compositor/test_compositor_mpi")
 cp "${bins[@]}" "$root/bin/"
-cp src/app/bench/*.py "$root/share/shellmarch/bench/"  # beside bin/, where bench looks
+cp src/bench/*.py "$root/share/shellmarch/bench/"  # beside bin/, where bench looks
 command -v vulkaninfo >/dev/null && cp "$(command -v vulkaninfo)" "$root/bin/"
 
 layer_json=/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json
@@ -92,6 +92,9 @@ cat > "$root/run" <<'RUN'
 # Ours come before the machine's LD_LIBRARY_PATH, which must still find its Vulkan driver.
 b=$(cd "$(dirname "$0")" && pwd)
 packed=${SHELLMARCH_PORTABLE_PACKED:-0}
+# `shellmarch bench` runs shellmarch-bench beside it; run that one directly here, so that it too
+# gets the libraries and loader chosen below.
+if [ "${1:-}" = shellmarch ] && [ "${2:-}" = bench ]; then set -- shellmarch-bench "${@:3}"; fi
 export VK_LAYER_PATH=$b/layers${VK_LAYER_PATH:+:$VK_LAYER_PATH}
 cache=$( (ldconfig -p || /sbin/ldconfig -p) 2>/dev/null)
 machineHas() {  # machineHas LIB: the machine's loader would find LIB

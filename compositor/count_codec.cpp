@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "compositor/communicator.h"
+#include "comm/communicator.h"
 
 namespace sm::comp {
 
@@ -56,19 +56,19 @@ void expandZeroRuns(std::span<const uint32_t> code, std::span<uint32_t> words) {
   size_t at = 0, c = 0;
   while (at < words.size()) {
     if (c + 2 > code.size())
-      throw CommError("count exchange: a zero-run code ends after " + std::to_string(at) + " of " +
-                      std::to_string(words.size()) + " words");
+      throw comm::CommError("count exchange: a zero-run code ends after " + std::to_string(at) +
+                            " of " + std::to_string(words.size()) + " words");
     const uint64_t zeros = code[c], literals = code[c + 1];
     c += 2;
     if (zeros + literals > words.size() - at || literals > code.size() - c)
-      throw CommError("count exchange: a zero-run record overruns its " +
-                      std::to_string(words.size()) + " words");
+      throw comm::CommError("count exchange: a zero-run record overruns its " +
+                            std::to_string(words.size()) + " words");
     for (uint64_t k = 0; k < zeros; ++k) words[at++] = 0;
     for (uint64_t k = 0; k < literals; ++k) words[at++] = code[c++];
   }
   if (c != code.size())
-    throw CommError("count exchange: " + std::to_string(code.size() - c) +
-                    " words left over after a zero-run code");
+    throw comm::CommError("count exchange: " + std::to_string(code.size() - c) +
+                          " words left over after a zero-run code");
 }
 
 CountPayload choosePayload(std::span<const uint32_t> words, uint64_t denseBytes) {

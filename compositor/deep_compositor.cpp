@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "compositor/communicator.h"
+#include "comm/communicator.h"
 #include "compositor/deep_exchange.h"
 #include "compositor/device_util.h"
 #include "compositor/exchange_plan.h"
@@ -21,8 +21,8 @@ uint32_t fragmentBytes(Encoding e) {
   return e == Encoding::Float ? sizeof(DcFragment) : sizeof(DcPackedFragment);
 }
 
-DeepCompositor::DeepCompositor(const vk::Context& ctx, Communicator* comm, int width, int height,
-                               CompositorOptions options)
+DeepCompositor::DeepCompositor(const vk::Context& ctx, comm::Communicator* comm, int width,
+                               int height, CompositorOptions options)
     : ctx_(ctx),
       comm_(comm),
       width_(width),

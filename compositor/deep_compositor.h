@@ -25,9 +25,12 @@
 #include "vk/buffer.h"
 #include "vk/pipeline.h"
 
+namespace sm::comm {
+class Communicator;
+}
+
 namespace sm::comp {
 
-class Communicator;
 class DeepExchange;
 struct ListsView;
 
@@ -91,7 +94,7 @@ struct CompositeStats {
 class DeepCompositor {
  public:
   // comm == nullptr: one rank, no exchange. The communicator must outlive the compositor.
-  DeepCompositor(const vk::Context& ctx, Communicator* comm, int width, int height,
+  DeepCompositor(const vk::Context& ctx, comm::Communicator* comm, int width, int height,
                  CompositorOptions options);
   ~DeepCompositor();
 
@@ -133,7 +136,7 @@ class DeepCompositor {
   ListsView flatten(const ListsView& lists);
   void compositeLocal(const ListsView& lists, std::vector<glm::vec4>& image);
   const vk::Context& ctx_;
-  Communicator* comm_;
+  comm::Communicator* comm_;
   int width_, height_;
   CompositorOptions options_;
   uint64_t allocations_ = 0;

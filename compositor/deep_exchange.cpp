@@ -26,8 +26,7 @@ void copyBoundaries(VkCommandBuffer cmd, const vk::Buffer& src, uint64_t n, cons
   std::vector<VkBufferCopy> regions;
   for (size_t r = 0; r < indices.size(); ++r)
     if (indices[r] < n) regions.push_back({indices[r] * 4, uint64_t(r) * 4, 4});
-  if (!regions.empty())
-    vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), uint32_t(regions.size()), regions.data());
+  vk::copyRegions(cmd, src, dst, regions);
 }
 
 // The scan's value at each index (the total where the index is past the end), then the total.
@@ -42,7 +41,7 @@ void readBoundaries(const vk::Buffer& b, uint64_t n, uint64_t total,
 
 }  // namespace
 
-DeepExchange::DeepExchange(const vk::Context& ctx, Communicator& comm, uint32_t pixels,
+DeepExchange::DeepExchange(const vk::Context& ctx, comm::Communicator& comm, uint32_t pixels,
                            const CompositorOptions& o, PrefixSum& scan, ListStatistics& listStats,
                            uint64_t& allocations)
     : ctx_(ctx),
@@ -239,9 +238,9 @@ void DeepExchange::planCountReceive() {
     const uint64_t bytes = headerRecv_[s] & ~kZeroRunFlag;
     const bool code = headerRecv_[s] & kZeroRunFlag;
     if (code ? bytes % 4 != 0 || bytes >= t.recvBytes[s] : bytes != t.recvBytes[s])
-      throw CommError("count exchange: rank " + std::to_string(s) + " announces " +
-                      std::to_string(bytes) + " bytes" + (code ? " of zero runs" : "") +
-                      ", the plan allows " + std::to_string(t.recvBytes[s]));
+      throw comm::CommError("count exchange: rank " + std::to_string(s) + " announces " +
+                            std::to_string(bytes) + " bytes" + (code ? " of zero runs" : "") +
+                            ", the plan allows " + std::to_string(t.recvBytes[s]));
     payloadRecv_.bytes[s] = bytes;
     payloadRecv_.offsets[s] = words * 4;
     words += (bytes + 3) / 4;

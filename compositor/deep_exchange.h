@@ -17,7 +17,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "compositor/communicator.h"
+#include "comm/communicator.h"
 #include "compositor/exchange_plan.h"
 #include "compositor/list_statistics.h"
 #include "compositor/prefix_sum.h"
@@ -39,7 +39,7 @@ struct ListsView {
 
 class DeepExchange {
  public:
-  DeepExchange(const vk::Context& ctx, Communicator& comm, uint32_t pixels,
+  DeepExchange(const vk::Context& ctx, comm::Communicator& comm, uint32_t pixels,
                const CompositorOptions& options, PrefixSum& scan, ListStatistics& listStats,
                uint64_t& allocations);
   // Composites every rank's lists; fills `image` on rank 0 (left untouched elsewhere).
@@ -64,7 +64,7 @@ class DeepExchange {
   void grow(vk::Buffer& b, uint64_t bytes, vk::MemoryUse use, const char* name);
 
   const vk::Context& ctx_;
-  Communicator& comm_;
+  comm::Communicator& comm_;
   const uint32_t pixels_;
   const PixelRanges ranges_;
   const int rank_, ranks_;

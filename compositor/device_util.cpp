@@ -29,11 +29,4 @@ void hostWriteBarrier(VkCommandBuffer cmd) {
                 VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
 }
 
-void copyBuffer(VkCommandBuffer cmd, const vk::Buffer& src, uint64_t srcOffset,
-                const vk::Buffer& dst, uint64_t dstOffset, uint64_t bytes) {
-  if (bytes == 0) return;
-  VkBufferCopy c{srcOffset, dstOffset, bytes};
-  vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &c);
-}
-
 }  // namespace sm::comp

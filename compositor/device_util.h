@@ -25,8 +25,6 @@ void transferBarrier(VkCommandBuffer cmd);
 void hostReadBarrier(VkCommandBuffer cmd);
 // Makes host writes (to Upload buffers) visible to transfers and shaders of this submission.
 void hostWriteBarrier(VkCommandBuffer cmd);
-// Records a buffer copy; zero-byte copies are skipped (Vulkan forbids them).
-void copyBuffer(VkCommandBuffer cmd, const vk::Buffer& src, uint64_t srcOffset,
-                const vk::Buffer& dst, uint64_t dstOffset, uint64_t bytes);
+using vk::copyBuffer;
 
 }  // namespace sm::comp

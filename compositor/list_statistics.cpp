@@ -12,7 +12,7 @@ ListStatistics::ListStatistics(const vk::Context& ctx)
               "list statistics") {}
 
 void ListStatistics::record(VkCommandBuffer cmd, VkDeviceAddress counts, uint32_t pixels) const {
-  vkCmdFillBuffer(cmd, result_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vk::fillZero(cmd, result_);
   vk::transferToComputeBarrier(cmd);
   constexpr uint32_t kPixelsPerGroup = 256 * 16;  // list_stats.comp: workgroup x pixels each
   pipeline_.dispatchItems(cmd, pixels, kPixelsPerGroup,

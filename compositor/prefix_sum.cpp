@@ -38,7 +38,7 @@ void PrefixSum::recordLevel(VkCommandBuffer cmd, VkDeviceAddress values, uint32_
 
 void PrefixSum::record(VkCommandBuffer cmd, VkDeviceAddress values, uint32_t n) {
   if (n == 0) {
-    vkCmdFillBuffer(cmd, total_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vk::fillZero(cmd, total_);
     vk::transferToComputeBarrier(cmd);
     return;
   }

@@ -4,8 +4,8 @@
 #include <fstream>
 
 #include "bench.h"
-#include "compositor/count_dump.h"
-#include "compositor/replay.h"
+#include "compositor/tools/count_dump.h"
+#include "compositor/tools/replay.h"
 #include "synthetic.h"
 
 namespace sm::comp::bench {

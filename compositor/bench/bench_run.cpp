@@ -5,9 +5,10 @@
 #include <fstream>
 
 #include "bench.h"
-#include "compositor/count_dump.h"
+#include "comm/mpi/mpi_communicator.h"
+#include "comm/mpi/mpi_session.h"
 #include "compositor/host_lists.h"
-#include "compositor/mpi/mpi_communicator.h"
+#include "compositor/tools/count_dump.h"
 #include "synthetic.h"
 #include "vk/context.h"
 
@@ -24,12 +25,12 @@ double median(std::vector<double> v) {
 }
 
 // The slowest rank's time (a frame is done when the last rank is).
-double slowest(Communicator& comm, double ms) {
+double slowest(comm::Communicator& comm, double ms) {
   return double(comm.allreduceMax(uint64_t(ms * 1000.0))) / 1000.0;
 }
 
-nlohmann::json measure(Communicator& comm, const vk::Context& ctx, const HostLists& lists, int size,
-                       const CompositorOptions& o, int frames) {
+nlohmann::json measure(comm::Communicator& comm, const vk::Context& ctx, const HostLists& lists,
+                       int size, const CompositorOptions& o, int frames) {
   DeepCompositor compositor(ctx, &comm, size, size, o);
   ListWriter(compositor).write(lists);
   // One image for every frame, as a renderer's frame loop keeps it: a fresh 64 MiB image per
@@ -74,7 +75,7 @@ void dumpCounts(DeepCompositor& compositor, const std::string& path, int size) {
     std::printf("wrote per-rank fragment counts of %dx%d to %s\n", size, size, path.c_str());
 }
 
-void runAll(MpiCommunicator& comm, const RunOptions& o) {
+void runAll(comm::MpiCommunicator& comm, const RunOptions& o) {
   vk::ContextOptions co;
   co.rayTracing = false;
   vk::Context ctx(co);
@@ -140,12 +141,9 @@ void printRunTable(const nlohmann::json& rows) {
 }
 
 int runBenchmark(const RunOptions& o) {
-  MPI_Init(nullptr, nullptr);
-  {
-    MpiCommunicator comm;
-    runOrAbort(comm, [&] { runAll(comm, o); });
-  }
-  MPI_Finalize();
+  comm::MpiSession session;
+  comm::MpiCommunicator comm;
+  comm::runOrAbort(comm, [&] { runAll(comm, o); });
   return 0;
 }
 

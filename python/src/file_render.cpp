@@ -1,7 +1,8 @@
 #include "file_render.h"
+#include "comm/single_rank.h"
 
-#include "app/collectives.h"
-#include "app/render_job.h"
+#include "comm/reductions.h"
+#include "pipeline/render_job.h"
 #include "scene/image.h"
 #include "scene_args.h"
 
@@ -19,7 +20,7 @@ Frames renderFile(const std::string& path, const std::vector<std::string>& args)
   };
   // One process, whatever launched Python: a script under mpirun renders files on each rank
   // alone (data-parallel files are the command's; in situ is Renderer's).
-  app::SingleProcess single;
+  comm::SingleRank single;
   runRender(job, single);
   return frames;
 }

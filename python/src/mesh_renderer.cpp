@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
-#include "app/render_job.h"
-#include "app/render_setup.h"
 #include "common/error.h"
+#include "pipeline/render_options.h"
+#include "pipeline/render_setup.h"
 #include "scene/image.h"
 #include "scene/transfer_function.h"
 #include "scene_args.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
+#include "cli/commands.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "errors.h"

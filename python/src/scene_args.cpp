@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/cli_checks.h"
-#include "app/scene_options.h"
+#include "cli/cli_checks.h"
+#include "cli/scene_options.h"
 
 namespace sm::python {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/render_job.h"
+#include "pipeline/render_options.h"
 
 namespace sm::python {
 

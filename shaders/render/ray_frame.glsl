@@ -1,4 +1,4 @@
-// Watertight crossing predicates (DESIGN.md invariant 2).
+// Watertight crossing predicates (docs/DESIGN.md invariant 2).
 //
 // Every vertex is mapped into a ray-centric frame (Woop, Benthin, Wald 2013: permute the axes so
 // that the ray runs along +z, shear x and y by the direction). A face contains the ray when the

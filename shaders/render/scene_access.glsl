@@ -9,7 +9,7 @@
 #include "shared/render_types.h"
 #include "shared/xor_codec.h"
 
-// Scene specialisation (DESIGN.md: pay only for what the scene uses).
+// Scene specialisation (docs/DESIGN.md: pay only for what the scene uses).
 layout(constant_id = 0) const bool kCompact = true;
 layout(constant_id = 1) const uint kTypesPresent = 15u;  // bit t: elements of type t exist
 
@@ -23,7 +23,7 @@ layout(buffer_reference, scalar) readonly buffer SmParams { FrameParams p; };
 layout(buffer_reference, scalar) buffer SmStats { RenderStats s; };
 
 // A scene of one element type makes every test on the type a constant, so the code of the other
-// types drops out of the pipeline (DESIGN.md: pay only for what the scene uses).
+// types drops out of the pipeline (docs/DESIGN.md: pay only for what the scene uses).
 uint specialisedType(uint t) {
   return kTypesPresent == 1u ? SM_TET : kTypesPresent == 2u ? SM_PYR : kTypesPresent == 4u ? SM_WED
        : kTypesPresent == 8u ? SM_HEX : t;

@@ -1,10 +1,12 @@
-// The one cell and face table (DESIGN.md invariant 1), shared by C++ and GLSL.
+// The one cell and face table (docs/DESIGN.md invariant 1), shared by C++ and GLSL.
 //
 // Element types and their vertex order are VTK's. Faces are listed so that, for a positively
 // oriented element, every face is wound counter-clockwise seen from outside (right-hand normal
 // points out). Elements are reoriented at load so that this holds for every element we keep.
 // Quads are split into two triangles along the diagonal through their smallest global vertex
 // index (smQuadSplit), so both elements sharing a quad, and the shell, split it identically.
+// Tables laid out by hand, one row per cell type or face: clang-format would reflow them.
+// clang-format off
 #ifndef SM_CELL_TABLES_H
 #define SM_CELL_TABLES_H
 
@@ -94,3 +96,4 @@ SM_FN void smQuadSplit(uint a, uint b, uint c, uint d, SM_OUT_ARR(uint, t, 6), S
 SM_END_NAMESPACE
 
 #endif
+// clang-format on

@@ -1,6 +1,6 @@
-// Bridge that lets one header be included by both C++ and GLSL (glslang, GL_GOOGLE_include_directive).
-// Only the common subset is used in shared headers: uint/int/float scalars, fixed arrays, plain
-// functions. In C++ everything lives in namespace sm::gpu.
+// Bridge that lets one header be included by both C++ and GLSL (glslang,
+// GL_GOOGLE_include_directive). Only the common subset is used in shared headers: uint/int/float
+// scalars, fixed arrays, plain functions. In C++ everything lives in namespace sm::gpu.
 #ifndef SM_GLSL_CPP_H
 #define SM_GLSL_CPP_H
 

@@ -13,6 +13,8 @@
 // slots are VTK face numbers. Tetrahedra decode to (k0, k2, k1, d): a positively oriented order in
 // which face 3 is the entry face; their connectivity slot for a face is the rank (0..3) of the
 // opposite vertex's index among the tet's four (smTetSlot), which does not depend on vertex order.
+// Laid out by hand, one record per cell type a line: clang-format would reflow them.
+// clang-format off
 #ifndef SM_XOR_CODEC_H
 #define SM_XOR_CODEC_H
 
@@ -174,3 +176,4 @@ SM_FN int smPlainDecode(uint type, SM_IN_ARR(uint, rec, 8), SM_IN_ARR(uint, k, 4
 SM_END_NAMESPACE
 
 #endif
+// clang-format on

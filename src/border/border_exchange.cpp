@@ -85,11 +85,11 @@ int meetingRank(const Key& k, int ranks) {
 
 }  // namespace
 
-BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll,
+BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, comm::Communicator& comm,
                                std::span<const uint64_t> pointIds)
     : numPoints_(m.numPoints()) {
   SM_CHECK(pointIds.empty() || pointIds.size() == m.numPoints());
-  const int n = coll.size();
+  const int n = comm.size();
   const std::vector<uint32_t> border = boundaryPoints(m);
   const std::vector<uint64_t> occ = occurrences(m, pointIds, border);
   // Offers: the name's words (bit patterns carried in doubles, never computed with) and the copy
@@ -104,7 +104,7 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& co
                        std::bit_cast<double>(pos[2]), double(occ[i])});
     offered[to].push_back(border[i]);
   }
-  std::vector<std::vector<double>> got = coll.exchange(offers);
+  std::vector<std::vector<double>> got = comm::exchangeValues(comm, offers);
   offers.clear();
   // As meeting rank: a name offered by two or more ranks is a shared point, one group.
   std::vector<std::tuple<Key, int, uint32_t>> entries;
@@ -136,7 +136,7 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& co
       shared[s].push_back(g >= 0 ? 1.0 : 0.0);
       if (g >= 0) groupOf_[s].push_back(uint32_t(g));
     }
-  const std::vector<std::vector<double>> answers = coll.exchange(shared);
+  const std::vector<std::vector<double>> answers = comm::exchangeValues(comm, shared);
   mine_.resize(n);
   for (int to = 0; to < n; ++to) {
     SM_CHECK_EQ(answers[to].size(), offered[to].size());
@@ -149,17 +149,17 @@ BorderExchange::BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& co
 }
 
 void BorderExchange::addOtherRanks(std::vector<std::vector<double>>& columns,
-                                   RankExchange& coll) const {
+                                   comm::Communicator& comm) const {
   const size_t width = columns.size();
   for (const auto& c : columns) SM_CHECK_EQ(c.size(), numPoints_);
-  const int n = coll.size();
+  const int n = comm.size();
   std::vector<std::vector<double>> values(n);  // per shared point, its value in every column
   for (int to = 0; to < n; ++to) {
     values[to].reserve(mine_[to].size() * width);
     for (uint32_t p : mine_[to])
       for (const auto& c : columns) values[to].push_back(c[p]);
   }
-  const std::vector<std::vector<double>> received = coll.exchange(values);
+  const std::vector<std::vector<double>> received = comm::exchangeValues(comm, values);
   std::vector<double> totals(groups_ * width, 0.0);
   for (int s = 0; s < n; ++s) {  // in rank order: every copy gets the same sums
     SM_CHECK_EQ(received[s].size(), groupOf_[s].size() * width);
@@ -172,7 +172,7 @@ void BorderExchange::addOtherRanks(std::vector<std::vector<double>>& columns,
     for (uint32_t g : groupOf_[s])
       sums[s].insert(sums[s].end(), totals.begin() + ptrdiff_t(g * width),
                      totals.begin() + ptrdiff_t((g + 1) * width));
-  const std::vector<std::vector<double>> back = coll.exchange(sums);
+  const std::vector<std::vector<double>> back = comm::exchangeValues(comm, sums);
   for (int from = 0; from < n; ++from) {
     SM_CHECK_EQ(back[from].size(), mine_[from].size() * width);
     for (size_t i = 0; i < mine_[from].size(); ++i)

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "border/rank_exchange.h"
+#include "comm/reductions.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::border {
@@ -26,14 +26,14 @@ class BorderExchange {
   // `pointIds`, when not empty (one per point, the same on every rank for one point: a solver's
   // global vertex numbers), name the points instead of their coordinates: two points at one
   // position with different ids (a baffle's sides, each on its own rank) stay apart.
-  BorderExchange(const mesh::UnstructuredMesh& m, RankExchange& coll,
+  BorderExchange(const mesh::UnstructuredMesh& m, comm::Communicator& comm,
                  std::span<const uint64_t> pointIds = {});
 
   // Collective. Each of `columns` holds one value per point of this rank. Replaces each shared
   // point's values by the sums of the values of every rank's copy of the point, added in rank
   // order at its meeting rank, so that every copy gets the same values, bit for bit. Every rank
   // calls it the same number of times with the same number of columns.
-  void addOtherRanks(std::vector<std::vector<double>>& columns, RankExchange& coll) const;
+  void addOtherRanks(std::vector<std::vector<double>>& columns, comm::Communicator& comm) const;
 
   uint64_t sharedPoints() const { return sharedPoints_; }  // of this rank: on another rank too
 

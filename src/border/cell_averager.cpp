@@ -16,13 +16,13 @@ CellAverager::CellAverager(const mesh::UnstructuredMesh& input, std::vector<uint
   mesh_.skipped.polyhedraSplit = input.skipped.polyhedraSplit;
 }
 
-void CellAverager::findSharedPoints(RankExchange& ranks) {
+void CellAverager::findSharedPoints(comm::Communicator& comm) {
   found_ = true;
   uses_ = mesh::cellUsesAtPoints(mesh_);
-  if (ranks.size() > 1) {
-    border_ = std::make_unique<BorderExchange>(mesh_, ranks, globalIds_);
+  if (comm.size() > 1) {
+    border_ = std::make_unique<BorderExchange>(mesh_, comm, globalIds_);
     std::vector<std::vector<double>> columns{std::move(uses_)};
-    border_->addOtherRanks(columns, ranks);
+    border_->addOtherRanks(columns, comm);
     uses_ = std::move(columns[0]);
   }
   // Positions and ids only name the shared points: from here on the cells suffice.
@@ -30,11 +30,11 @@ void CellAverager::findSharedPoints(RankExchange& ranks) {
   std::vector<uint64_t>().swap(globalIds_);
 }
 
-std::vector<float> CellAverager::toPoints(std::span<const float> values, RankExchange& ranks) {
+std::vector<float> CellAverager::toPoints(std::span<const float> values, comm::Communicator& comm) {
   SM_CHECK_EQ(values.size(), numCells_);
-  if (!found_) findSharedPoints(ranks);
+  if (!found_) findSharedPoints(comm);
   std::vector<std::vector<double>> sums(1, mesh::cellSumsAtPoints(mesh_, values, numPoints_));
-  if (border_) border_->addOtherRanks(sums, ranks);
+  if (border_) border_->addOtherRanks(sums, comm);
   return mesh::meansAtPoints(sums[0], uses_);
 }
 

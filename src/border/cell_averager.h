@@ -30,10 +30,10 @@ class CellAverager {
   // of the values of the elements, on every rank, that use it (NaN for a vertex no element uses;
   // a NaN element makes its vertices NaN). The first call finds the vertices shared with other
   // ranks (by their coordinates, bit for bit) and counts the elements at each.
-  std::vector<float> toPoints(std::span<const float> values, RankExchange& ranks);
+  std::vector<float> toPoints(std::span<const float> values, comm::Communicator& comm);
 
  private:
-  void findSharedPoints(RankExchange& ranks);
+  void findSharedPoints(comm::Communicator& comm);
 
   mesh::UnstructuredMesh mesh_;  // points and cells only
   std::vector<uint64_t> globalIds_;

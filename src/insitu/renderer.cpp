@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "border/cell_averager.h"
+#include "comm/reductions.h"
 #include "common/error.h"
 #include "common/hash.h"
 #include "common/timer.h"
@@ -86,13 +87,14 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
   const sm::mesh::Bounds local = m.bounds();
   MeshFrame f;
   for (int a = 0; a < 3; ++a) {
-    f.whole.lo[a] = group.min(local.empty ? inf : local.lo[a]);
-    f.whole.hi[a] = group.max(local.empty ? -inf : local.hi[a]);
+    f.whole.lo[a] = sm::comm::minOf(group.comm(), local.empty ? inf : local.lo[a]);
+    f.whole.hi[a] = sm::comm::maxOf(group.comm(), local.empty ? -inf : local.hi[a]);
   }
   f.whole.empty = !(f.whole.lo.x <= f.whole.hi.x);
   const sm::render::ElementSizeSum sizes = sm::render::elementSizeSum(m);
-  f.elements = group.sum(sizes.count);
-  f.meanElementSize = f.elements ? group.sum(sizes.sum) / double(f.elements) : 0.0;
+  f.elements = sm::comm::sumOf(group.comm(), sizes.count);
+  f.meanElementSize =
+      f.elements ? sm::comm::sumOf(group.comm(), sizes.sum) / double(f.elements) : 0.0;
   return f;
 }
 
@@ -123,8 +125,9 @@ void Renderer::Impl::setMesh(const MeshView& view) {
   });
   // Vertices named by id on one rank and by coordinates on another would never meet.
   const bool hasVertices = m.numPoints() > 0;
-  const double byId = group.max(hasVertices && !globalIds.empty() ? 1.0 : 0.0);
-  const double byPosition = group.max(hasVertices && globalIds.empty() ? 1.0 : 0.0);
+  const double byId = sm::comm::maxOf(group.comm(), hasVertices && !globalIds.empty() ? 1.0 : 0.0);
+  const double byPosition =
+      sm::comm::maxOf(group.comm(), hasVertices && globalIds.empty() ? 1.0 : 0.0);
   if (byId > 0 && byPosition > 0)
     throw Error(
         "setMesh: globalIds given on some ranks but not on others (give them on every rank that "
@@ -152,20 +155,20 @@ void Renderer::Impl::setCellField(const std::string& name, std::span<const float
     for (size_t i = 0; i < expanded.size(); ++i) expanded[i] = values[elementOrigin[i]];
     values = expanded;
   }
-  if (!group.same(sm::hashBytes(name.data(), name.size())))
+  if (!sm::comm::allSame(group.comm(), sm::hashBytes(name.data(), name.size())))
     throw Error(
         "setCellField: the field name differs between ranks; every rank must set the same cell "
         "field in the same call");
   std::vector<float> atVertices;
-  group.runOrAbort([&] { atVertices = cellFields.toPoints(values, group); });
+  group.runOrAbort([&] { atVertices = cellFields.toPoints(values, group.comm()); });
   group.agree([&] { fields.set(name, atVertices); });
 }
 
 void Renderer::Impl::ensureRenderer(int width, int height) {
   if (compositor && compositor->width() == width && compositor->height() == height) return;
   renderer.reset();
-  compositor = std::make_unique<sm::comp::DeepCompositor>(*ctx, group.compositorComm(), width,
-                                                          height, sm::comp::CompositorOptions{});
+  compositor = std::make_unique<sm::comp::DeepCompositor>(
+      *ctx, sm::comm::withPeers(group.comm()), width, height, sm::comp::CompositorOptions{});
   renderer = std::make_unique<sm::render::Renderer>(*ctx, *scene, *compositor);
 }
 
@@ -179,10 +182,10 @@ void Renderer::Impl::render(const RenderSettings& s, Image& into) {
     range = fields.prepare(s.field, *scene);
     ensureRenderer(s.width, s.height);
   });
-  if (!group.same(sm::insitu::settingsDigest(s)))
+  if (!sm::comm::allSame(group.comm(), sm::insitu::settingsDigest(s)))
     throw Error("render: the settings differ between ranks; every rank must pass the same");
-  double lo = s.range ? (*s.range)[0] : group.min(range.lo);
-  double hi = s.range ? (*s.range)[1] : group.max(range.hi);
+  double lo = s.range ? (*s.range)[0] : sm::comm::minOf(group.comm(), range.lo);
+  double hi = s.range ? (*s.range)[1] : sm::comm::maxOf(group.comm(), range.hi);
   if (!(lo <= hi)) lo = 0, hi = 1;  // no finite value anywhere: any range renders transparent
   rs.transferFunction.lo = lo;
   rs.transferFunction.hi = hi;

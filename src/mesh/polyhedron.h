@@ -15,8 +15,8 @@
 // not a fan from it (the first vertex of a convex cell, which begins each of its faces); failing
 // that, the first that sees every cone, the flat triangles dropped: a planar face on it then ends
 // the cell on the apex's fan, which may differ from the neighbour's cut of the same plane. The
-// renderer meets such a face as two touching shells, which its traversal handles (DESIGN.md), at
-// the cost of a segment per ray through it.
+// renderer meets such a face as two touching shells, which its traversal handles (docs/DESIGN.md),
+// at the cost of a segment per ray through it.
 #pragma once
 
 #include <array>

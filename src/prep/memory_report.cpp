@@ -27,8 +27,9 @@ MemoryReport memoryReport(const PreparedRank& r, uint64_t scalarSteps) {
     m.compactedElements += r.elementCount[t] * compactBytes(t);
     m.plainElements += r.elementCount[t] * plainBytes(t);
   }
-  m.shell = (r.shellIndices.size() + r.shellRefs.size() + r.shellOther.size() + r.shellAdjacency.size()) *
-            sizeof(uint32_t);
+  m.shell =
+      (r.shellIndices.size() + r.shellRefs.size() + r.shellOther.size() + r.shellAdjacency.size()) *
+      sizeof(uint32_t);
   m.scalarsPerStep = r.numVertices() * sizeof(float);
   m.scalarSteps = scalarSteps;
   return m;

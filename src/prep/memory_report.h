@@ -11,10 +11,10 @@
 namespace sm::prep {
 
 struct MemoryReport {
-  uint64_t vertices = 0;           // rebased float positions
-  uint64_t vertexMap = 0;          // rank vertex -> mesh vertex (host only, for scalar gathers)
-  uint64_t connectivity = 0;       // one neighbour reference per face
-  uint64_t shell = 0;              // triangle indices, element refs, edge adjacency (+ quad 4th vertex)
+  uint64_t vertices = 0;      // rebased float positions
+  uint64_t vertexMap = 0;     // rank vertex -> mesh vertex (host only, for scalar gathers)
+  uint64_t connectivity = 0;  // one neighbour reference per face
+  uint64_t shell = 0;         // triangle indices, element refs, edge adjacency (+ quad 4th vertex)
   uint64_t compactedElements = 0;  // XOR records (what compact mode keeps)
   uint64_t plainElements = 0;      // VTK-ordered ids (what plain mode keeps)
   uint64_t scalarsPerStep = 0;

@@ -16,7 +16,8 @@ namespace sm::prep {
 
 // Frame all ranks agree on: positions are stored as float(p - origin), and vertices are numbered
 // in a global order derived from position alone, so every rank splits a shared quad the same way
-// and computes bit-identical crossing distances on shared faces (DESIGN.md invariants 1, 2, 7).
+// and computes bit-identical crossing distances on shared faces (docs/DESIGN.md invariants 1, 2,
+// 7).
 struct GlobalFrame {
   glm::dvec3 origin{0.0};
   // Device coordinates are (p - origin) * scale, a power of two (exact): 1 for data sets of

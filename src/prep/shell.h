@@ -25,7 +25,7 @@ Shell extractShell(const ElementArrays& elements, const ElementArrays& neighbors
                    const std::vector<float>& positions);
 
 // Reorders triangles by the Morton code of their centroids. Lavapipe's BVH builder splits the
-// triangle list in index order: unsorted shells trace hundreds of times slower (DESIGN.md).
+// triangle list in index order: unsorted shells trace hundreds of times slower (docs/DESIGN.md).
 void sortShellSpatially(Shell& shell, const std::vector<float>& positions);
 
 }  // namespace sm::prep

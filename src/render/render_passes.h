@@ -24,8 +24,8 @@ struct ListConstants {
   bool operator==(const ListConstants&) const = default;
 };
 
-// What a frame's pipelines are specialised for besides the scene (DESIGN.md, "pay only for what
-// the scene uses"): each combination is its own pipeline, built on first use.
+// What a frame's pipelines are specialised for besides the scene (docs/DESIGN.md, "pay only for
+// what the scene uses"): each combination is its own pipeline, built on first use.
 struct PassOptions {
   bool elementExact = false;
   bool shading = false;

@@ -1,5 +1,7 @@
 // Generated once from matplotlib's colour maps (viridis, inferno, plasma: CC0; coolwarm is
 // Moreland's diverging map, the same as ParaView's "Cool to Warm"). 256 RGB entries each.
+// Tables laid out by hand, 4 entries a line: clang-format would put one number on each.
+// clang-format off
 #include "scene/colormap_data.h"
 
 namespace sm::scene {
@@ -414,3 +416,4 @@ std::span<const ColormapData> builtinColormaps() {
 }
 
 }  // namespace sm::scene
+// clang-format on

@@ -71,7 +71,8 @@ void writePngRgba(const std::string& path, const Image& img) {
 }
 
 void writePfm(const std::string& path, const Image& img, const glm::vec3& bg) {
-  std::string header = "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1.0\n";
+  std::string header =
+      "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n-1.0\n";
   std::vector<uint8_t> bytes(header.begin(), header.end());
   bytes.reserve(bytes.size() + size_t(img.width) * img.height * 12);
   for (int y = img.height - 1; y >= 0; --y) {
@@ -90,7 +91,8 @@ Image readPfm(const std::string& path) {
   std::string head(bytes.begin(), bytes.begin() + std::min<size_t>(bytes.size(), 64));
   int w = 0, h = 0, used = 0;
   float scale = 0;
-  if (std::sscanf(head.c_str(), "PF %d %d %f%n", &w, &h, &scale, &used) != 3 || w <= 0 || h <= 0 || scale >= 0)
+  if (std::sscanf(head.c_str(), "PF %d %d %f%n", &w, &h, &scale, &used) != 3 || w <= 0 || h <= 0 ||
+      scale >= 0)
     throw FileError(path, "not a little-endian colour PFM");
   size_t at = size_t(used) + 1;  // one whitespace byte ends the header
   if (bytes.size() < at + size_t(w) * h * 12) throw FileError(path, "truncated PFM");
@@ -149,40 +151,6 @@ ImageError compareImages(const Image& a, const Image& b) {
   e.rmse = a.pixels.empty() ? 0.0 : std::sqrt(sum / (4.0 * a.pixels.size()));
   e.psnr = e.rmse > 0 ? 20.0 * std::log10(1.0 / e.rmse) : 99.0;
   return e;
-}
-
-double ssim(const Image& a, const Image& b) {
-  if (a.width != b.width || a.height != b.height) throw Error("ssim: image sizes differ");
-  auto lum = [](const glm::vec4& p) { return 0.299 * p.r + 0.587 * p.g + 0.114 * p.b; };
-  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-  const int win = 8;
-  double total = 0;
-  int windows = 0;
-  for (int y0 = 0; y0 + win <= a.height; y0 += win / 2) {
-    for (int x0 = 0; x0 + win <= a.width; x0 += win / 2) {
-      double ma = 0, mb = 0, va = 0, vb = 0, cov = 0;
-      for (int y = y0; y < y0 + win; ++y)
-        for (int x = x0; x < x0 + win; ++x) {
-          ma += lum(a.at(x, y));
-          mb += lum(b.at(x, y));
-        }
-      ma /= win * win;
-      mb /= win * win;
-      for (int y = y0; y < y0 + win; ++y)
-        for (int x = x0; x < x0 + win; ++x) {
-          double da = lum(a.at(x, y)) - ma, db = lum(b.at(x, y)) - mb;
-          va += da * da;
-          vb += db * db;
-          cov += da * db;
-        }
-      va /= win * win - 1;
-      vb /= win * win - 1;
-      cov /= win * win - 1;
-      total += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
-      ++windows;
-    }
-  }
-  return windows ? total / windows : 1.0;
 }
 
 Image differenceImage(const Image& a, const Image& b, float scale) {

@@ -50,8 +50,6 @@ struct ImageError {
   int nanPixels = 0;                      // pixels with a non-finite channel in either image
 };
 ImageError compareImages(const Image& a, const Image& b);
-// Mean SSIM of luminance (8x8 windows, standard constants), composited over black.
-double ssim(const Image& a, const Image& b);
 // |a - b| per pixel (max over channels) times `scale`, as a grey-scale opaque image.
 Image differenceImage(const Image& a, const Image& b, float scale = 10.0f);
 // Per-pixel L2 norm of the RGBA difference mapped through a heat colour map (the paper's figure).

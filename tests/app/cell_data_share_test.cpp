@@ -11,15 +11,15 @@
 #include <fstream>
 #include <functional>
 
-#include "app/cell_data_share.h"
-#include "app/comm_collectives.h"
-#include "app/rank_share.h"
 #include "border/border_exchange.h"
+#include "comm/local_communicator.h"
+#include "comm/reductions.h"
 #include "common/error.h"
-#include "compositor/local_communicator.h"
 #include "gen/generate.h"
 #include "io/weld.h"
 #include "partition/partition.h"
+#include "pipeline/cell_data_share.h"
+#include "pipeline/rank_share.h"
 #include "support/test_meshes.h"
 #include "support/test_support.h"
 
@@ -96,11 +96,11 @@ UnstructuredMesh shareOf(const std::vector<UnstructuredMesh>& pieces, int rank, 
 void expectSameAsWhole(const std::vector<UnstructuredMesh>& pieces, int ranks) {
   UnstructuredMesh whole = io::weldPieces("data set", pieces);
   mesh::cellFieldsToPoints(whole);
-  comp::runLocalRanks(ranks, [&](comp::Communicator& c) {
-    CommCollectives coll(c);
+  comm::runLocalRanks(ranks, [&](comm::Communicator& c) {
+    comm::Communicator& comm = c;
     std::vector<size_t> held;
     UnstructuredMesh m = shareOf(pieces, c.rank(), ranks, held);
-    cellDataToPointsOverRanks(m, !held.empty(), "its pieces", coll);
+    cellDataToPointsOverRanks(m, !held.empty(), "its pieces", comm);
     EXPECT_TRUE(m.cellFields.empty());
     if (held.empty()) return;
     ASSERT_EQ(m.fields.size(), 2u);
@@ -140,15 +140,15 @@ TEST(BorderExchange, TwoHalvesShareTheirMiddlePlane) {
   UnstructuredMesh whole = gen::cube(gen::CubeSplit::Hex, 4);
   for (size_t e = 0; e < whole.clusters[3].size(); ++e)
     whole.clusters[3][e] = test::cellCentroid(whole, 3, e).x < 0.5 ? 0 : 1;
-  comp::runLocalRanks(2, [&](comp::Communicator& c) {
-    CommCollectives coll(c);
+  comm::runLocalRanks(2, [&](comm::Communicator& c) {
+    comm::Communicator& comm = c;
     UnstructuredMesh m = partition::extractClustersWithPointMap(whole, {c.rank()}).mesh;
-    border::BorderExchange border(m, coll);
+    border::BorderExchange border(m, comm);
     EXPECT_EQ(border.sharedPoints(), 25u);  // the 5 x 5 points of the plane x = 0.5
     // Two columns: ones, and the rank's number plus one.
     std::vector<std::vector<double>> columns{std::vector<double>(m.numPoints(), 1.0),
                                              std::vector<double>(m.numPoints(), c.rank() + 1.0)};
-    border.addOtherRanks(columns, coll);
+    border.addOtherRanks(columns, comm);
     for (size_t p = 0; p < m.numPoints(); ++p) {
       const bool shared = m.points[p].x == 0.5;
       EXPECT_EQ(columns[0][p], shared ? 2.0 : 1.0) << p;
@@ -209,12 +209,12 @@ TEST(BorderExchange, CopiesOfAPointPairUpAsTheWeldPairsThem) {
 void expectAllRanksFail(const std::vector<UnstructuredMesh>& pieces, int ranks,
                         const std::string& want) {
   try {
-    comp::runLocalRanks(ranks, [&](comp::Communicator& c) {
-      CommCollectives coll(c);
+    comm::runLocalRanks(ranks, [&](comm::Communicator& c) {
+      comm::Communicator& comm = c;
       std::vector<size_t> held;
       UnstructuredMesh m = shareOf(pieces, c.rank(), ranks, held);
       try {
-        cellDataToPointsOverRanks(m, !held.empty(), concat("piece ", held.at(0)), coll);
+        cellDataToPointsOverRanks(m, !held.empty(), concat("piece ", held.at(0)), comm);
         ADD_FAILURE() << "rank " << c.rank() << ": no error";
       } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
@@ -250,12 +250,12 @@ TEST(BorderExchange, ARankWhosePiecesHoldNoCellDataFailsWithTheOthers) {
 void expectPolyhedraQ(const std::string& path, const std::function<float(glm::dvec3)>& want) {
   for (bool stream : {true, false}) {
     SCOPED_TRACE(stream ? "streamed" : "whole");
-    comp::runLocalRanks(1, [&](comp::Communicator& c) {
-      CommCollectives coll(c);
+    comm::runLocalRanks(1, [&](comm::Communicator& c) {
+      comm::Communicator& comm = c;
       ShareOptions o;
       o.read.fields = {"q"};
       o.streamSteps = stream;
-      const RankShare s = loadRankShare(path, o, coll);
+      const RankShare s = loadRankShare(path, o, comm);
       ASSERT_EQ(s.mesh.fields.size(), 1u);
       EXPECT_EQ(s.mesh.skipped.polyhedraSplit, 3u);
       for (size_t p = 0; p < s.mesh.numPoints(); ++p) {

@@ -10,8 +10,8 @@
 #include <limits>
 #include <sstream>
 
-#include "app/commands.h"
-#include "app/image_check.h"
+#include "cli/commands.h"
+#include "cli/image_check.h"
 #include "common/file_util.h"
 #include "scene/image.h"
 #include "support/test_support.h"

@@ -22,7 +22,7 @@ case $case_name in
     "$sm" generate --body capsule --elements 300000 --clusters 8 --steps 2 --hex-block --out demo.pvtu
     ;;
   partition-invariance)
-    # DESIGN.md invariant 4: any partition gives the same samples, so the composited image equals
+    # docs/DESIGN.md invariant 4: any partition gives the same samples, so the composited image equals
     # the one-cluster image up to float rounding (1e-3 per channel), early termination off.
     "$sm" render demo.pvtu "${view[@]}" --clusters 1 --out one.pfm
     mpi 2 "$sm" render demo.pvtu "${view[@]}" --clusters 8 --out r2.pfm

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "app/frame_writer.h"
 #include "common/error.h"
 #include "common/file_util.h"
+#include "pipeline/frame_writer.h"
 #include "support/test_support.h"
 
 namespace sm::app {

@@ -6,12 +6,12 @@
 
 #include <cmath>
 
-#include "app/comm_collectives.h"
-#include "app/rank_share.h"
-#include "app/step_source.h"
-#include "compositor/local_communicator.h"
+#include "comm/local_communicator.h"
+#include "comm/reductions.h"
 #include "gen/generate.h"
 #include "io/mesh_io.h"
+#include "pipeline/rank_share.h"
+#include "pipeline/step_source.h"
 #include "support/test_meshes.h"
 #include "support/test_support.h"
 
@@ -55,17 +55,17 @@ TEST(StreamedFields, CellAndPointDataStreamAsTheyLoadWhole) {
       {"temperature", 2}, {"pressure", 3}, {"density", 1}};
   for (int ranks : {1, 4}) {
     SCOPED_TRACE(std::to_string(ranks) + " ranks");
-    comp::runLocalRanks(ranks, [&](comp::Communicator& c) {
-      CommCollectives coll(c);
+    comm::runLocalRanks(ranks, [&](comm::Communicator& c) {
+      comm::Communicator& comm = c;
       ShareOptions o;
       for (const auto& f : fields) o.read.fields.push_back(f.first);
       o.streamSteps = true;
-      const RankShare streamed = loadRankShare(path, o, coll);
+      const RankShare streamed = loadRankShare(path, o, comm);
       o.streamSteps = false;
-      const RankShare whole = loadRankShare(path, o, coll);
+      const RankShare whole = loadRankShare(path, o, comm);
       ASSERT_TRUE(streamed.stream.has_value());
       ASSERT_FALSE(whole.stream.has_value());
-      const StepSource a(path, streamed, coll), b(path, whole, coll);
+      const StepSource a(path, streamed, comm), b(path, whole, comm);
       EXPECT_FALSE(a.collective("temperature"));
       EXPECT_TRUE(a.collective("pressure"));
       EXPECT_TRUE(a.collective("density"));

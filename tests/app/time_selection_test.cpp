@@ -3,9 +3,10 @@
 // with and without the times is exercised by app.time-steps under mpiexec).
 #include <gtest/gtest.h>
 
-#include "app/collectives.h"
-#include "app/time_selection.h"
+#include "comm/reductions.h"
+#include "comm/single_rank.h"
 #include "common/error.h"
+#include "pipeline/time_selection.h"
 
 namespace sm::app {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 using Steps = std::vector<uint64_t>;
 
 Steps select(const std::string& text, uint64_t available, std::vector<double> times = {}) {
-  SingleProcess one;
+  comm::SingleRank one;
   return selectSteps(text, available, times, one);
 }
 

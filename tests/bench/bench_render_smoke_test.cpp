@@ -75,8 +75,9 @@ TEST(BenchRender, TinyMeshWritesPromisedJson) {
     for (const char* ref : {"grid", "converged"})
       for (const char* k : {"rmse", "max_abs", "psnr"})
         keys.push_back(std::string("sizes.0.errors.") + img + "." + ref + "." + k);
-  for (const char* k : {"cold_seconds", "warm_seconds", "startup_cold.context_ms",
-                        "startup_warm.first_frame_ms", "startup_warm.pipelines_ms", "vtk.available"})
+  for (const char* k :
+       {"cold_seconds", "warm_seconds", "startup_cold.context_ms", "startup_warm.first_frame_ms",
+        "startup_warm.pipelines_ms", "vtk.available"})
     keys.push_back(std::string("first_image.") + k);
   EXPECT_EQ(missingKeys(j, keys), std::vector<std::string>{});
   // The first image: the cold process compiles every shader; where shaders are kept as shader

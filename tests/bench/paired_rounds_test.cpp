@@ -1,6 +1,6 @@
 // Paired rounds of `shellmarch bench render` with made-up frame times: which goals are paired, in
 // what order the renderers run, the ratios and the goal decided on their median.
-#include "app/bench/paired_rounds.h"
+#include "bench/paired_rounds.h"
 
 #include <gtest/gtest.h>
 

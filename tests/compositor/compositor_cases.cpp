@@ -15,7 +15,7 @@ std::string describe(const CompositorOptions& o, const World& w) {
          ownershipName(o.ownership) + " ownership";
 }
 
-WorldSpec specFor(Communicator* comm, int width, int height, uint32_t seed) {
+WorldSpec specFor(comm::Communicator* comm, int width, int height, uint32_t seed) {
   WorldSpec s;
   s.width = width;
   s.height = height;
@@ -26,14 +26,14 @@ WorldSpec specFor(Communicator* comm, int width, int height, uint32_t seed) {
 
 }  // namespace
 
-int rankOf(Communicator* comm) {
+int rankOf(comm::Communicator* comm) {
   return comm ? comm->rank() : 0;
 }
-int ranksOf(Communicator* comm) {
+int ranksOf(comm::Communicator* comm) {
   return comm ? comm->size() : 1;
 }
 
-RankRig::RankRig(Communicator* comm, const vk::Context& ctx, int width, int height,
+RankRig::RankRig(comm::Communicator* comm, const vk::Context& ctx, int width, int height,
                  const CompositorOptions& options)
     : comm_(comm),
       compositor_(std::make_unique<DeepCompositor>(ctx, comm, width, height, options)),
@@ -44,7 +44,7 @@ std::vector<glm::vec4> RankRig::run(const World& w, CompositeMethod method) {
   return compositor_->composite(method);
 }
 
-void checkSmallImages(Communicator* comm, const vk::Context& ctx) {
+void checkSmallImages(comm::Communicator* comm, const vk::Context& ctx) {
   for (auto [width, height] : {std::pair{1, 1}, std::pair{17, 13}}) {
     for (auto [e, own] : {std::pair{Encoding::Float, PixelOwnership::Interleaved},
                           {Encoding::Rgba8, PixelOwnership::Interleaved},
@@ -66,7 +66,7 @@ void checkSmallImages(Communicator* comm, const vk::Context& ctx) {
   }
 }
 
-void checkLargeImage(Communicator* comm, const vk::Context& ctx) {
+void checkLargeImage(comm::Communicator* comm, const vk::Context& ctx) {
   WorldSpec s = specFor(comm, 256, 256, 11);
   s.maxShort = 3;
   s.longFraction = 0.002;
@@ -87,7 +87,7 @@ void checkLargeImage(Communicator* comm, const vk::Context& ctx) {
   }
 }
 
-void checkBeyondOneDispatchRow(Communicator* comm, const vk::Context& ctx) {
+void checkBeyondOneDispatchRow(comm::Communicator* comm, const vk::Context& ctx) {
   CompositorOptions o;
   // 4 196 352 pixels: 65 568 groups of 64, past the 65 535 a dispatch row may hold. Sparse, so
   // that the world and its reference stay small.
@@ -101,7 +101,7 @@ void checkBeyondOneDispatchRow(Communicator* comm, const vk::Context& ctx) {
   if (rankOf(comm) == 0) expectImageNear(image, deepReference(w, o), kTolerance, describe(o, w));
 }
 
-void checkFixedLists(Communicator* comm, const vk::Context& ctx) {
+void checkFixedLists(comm::Communicator* comm, const vk::Context& ctx) {
   for (ListMode mode : {ListMode::FixedDrop, ListMode::FixedMerge}) {
     for (uint32_t k : {1u, 3u}) {
       for (Encoding e : {Encoding::Float, Encoding::Rgba8}) {
@@ -129,7 +129,7 @@ void checkFixedLists(Communicator* comm, const vk::Context& ctx) {
   }
 }
 
-void checkCounterBoundaries(Communicator* comm, const vk::Context& ctx) {
+void checkCounterBoundaries(comm::Communicator* comm, const vk::Context& ctx) {
   const bool exchange = ranksOf(comm) > 1;
   CompositorOptions o;
   RankRig rig(comm, ctx, 5, 3, o);

@@ -19,7 +19,9 @@ class CompositorMpi : public ::testing::Test {
     EXPECT_EQ(mpiContext().validationErrors(), 0u) << "rank " << mpiWorld().rank();
     EXPECT_EQ(mpiContext().validationWarnings(), 0u) << "rank " << mpiWorld().rank();
   }
-  void run(void (*body)(Communicator*, const vk::Context&)) { body(&mpiWorld(), mpiContext()); }
+  void run(void (*body)(comm::Communicator*, const vk::Context&)) {
+    body(&mpiWorld(), mpiContext());
+  }
   uint64_t splitBefore_ = 0;
   bool chunked_ = false;
 };
@@ -69,8 +71,8 @@ TEST_F(CompositorMpi, MpiErrorsBecomeExceptionsWithMpiErrorString) {
   uint64_t v = 0;
   try {
     mpiWorld().broadcast(&v, sizeof v, mpiWorld().size());  // no such root
-    ADD_FAILURE() << "expected MpiError";
-  } catch (const MpiError& e) {
+    ADD_FAILURE() << "expected comm::MpiError";
+  } catch (const comm::MpiError& e) {
     EXPECT_NE(std::string(e.what()).find("MPI_Bcast"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("MPI_ERR_ROOT"), std::string::npos) << e.what();
   }
@@ -80,7 +82,7 @@ TEST_F(CompositorMpi, MpiErrorsBecomeExceptionsWithMpiErrorString) {
 // Run only by mpi_abort_check.sh: the last rank fails while the others wait for it in a frame;
 // every process must end promptly with the message.
 TEST_F(CompositorMpi, DISABLED_FailureOnOneRankEndsAllRanks) {
-  Communicator& comm = mpiWorld();
+  comm::Communicator& comm = mpiWorld();
   WorldSpec s;
   s.ranks = comm.size();
   World w = makeWorld(s);

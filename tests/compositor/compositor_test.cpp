@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "comm/local_communicator.h"
 #include "compositor/device_util.h"
 #include "compositor/list_statistics.h"
-#include "compositor/local_communicator.h"
 #include "compositor/prefix_sum.h"
 #include "compositor_cases.h"
 #include "vk/context.h"
@@ -17,7 +17,7 @@
 namespace sm::comp::test {
 namespace {
 
-using Case = void (*)(Communicator*, const vk::Context&);
+using Case = void (*)(comm::Communicator*, const vk::Context&);
 
 vk::ContextOptions computeOnly(bool forceStaging = false) {
   vk::ContextOptions o;
@@ -27,7 +27,7 @@ vk::ContextOptions computeOnly(bool forceStaging = false) {
 }
 
 void onLocalRanks(int ranks, Case body, bool forceStaging = false) {
-  runLocalRanks(ranks, [&](Communicator& comm) {
+  comm::runLocalRanks(ranks, [&](comm::Communicator& comm) {
     vk::Context ctx(computeOnly(forceStaging));
     body(&comm, ctx);
     EXPECT_EQ(ctx.validationErrors(), 0u) << "rank " << comm.rank();
@@ -159,7 +159,7 @@ TEST(CompositorOneRank, WithoutCommunicator) {
 TEST(CompositorErrors, FailureOnOneRankEndsAllRanksWithItsMessage) {
   std::atomic<int> completed = 0;
   try {
-    runLocalRanks(3, [&](Communicator& comm) {
+    comm::runLocalRanks(3, [&](comm::Communicator& comm) {
       vk::Context ctx(computeOnly());
       WorldSpec s;
       s.ranks = 3;
@@ -171,8 +171,8 @@ TEST(CompositorErrors, FailureOnOneRankEndsAllRanksWithItsMessage) {
       ++completed;
     });
     FAIL() << "expected the injected error";
-  } catch (const CommAborted&) {
-    FAIL() << "the original error, not the others' CommAborted, must reach the caller";
+  } catch (const comm::CommAborted&) {
+    FAIL() << "the original error, not the others' comm::CommAborted, must reach the caller";
   } catch (const std::runtime_error& e) {
     EXPECT_STREQ(e.what(), "injected failure on rank 1");
   }

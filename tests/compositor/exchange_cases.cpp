@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "compositor/exchange_plan.h"
-#include "compositor/image_compare.h"
-#include "compositor/replay.h"
+#include "compositor/tools/image_compare.h"
+#include "compositor/tools/replay.h"
 #include "compositor_cases.h"
 
 namespace sm::comp::test {
@@ -35,7 +35,7 @@ World interleavedWorld(int ranks) {
 
 }  // namespace
 
-void checkSingleFragment(Communicator* comm, const vk::Context& ctx) {
+void checkSingleFragment(comm::Communicator* comm, const vk::Context& ctx) {
   const int R = ranksOf(comm);
   World w = interleavedWorld(R);
   CompositorOptions o;
@@ -60,7 +60,7 @@ void checkSingleFragment(Communicator* comm, const vk::Context& ctx) {
   }
 }
 
-void checkStatistics(Communicator* comm, const vk::Context& ctx) {
+void checkStatistics(comm::Communicator* comm, const vk::Context& ctx) {
   const int R = ranksOf(comm), me = rankOf(comm);
   struct Case {
     Encoding e;
@@ -145,7 +145,7 @@ void checkStatistics(Communicator* comm, const vk::Context& ctx) {
   }
 }
 
-void checkBuffersOnlyGrow(Communicator* comm, const vk::Context& ctx) {
+void checkBuffersOnlyGrow(comm::Communicator* comm, const vk::Context& ctx) {
   CompositorOptions o;
   RankRig rig(comm, ctx, 17, 13, o);
   WorldSpec big;
@@ -167,7 +167,7 @@ void checkBuffersOnlyGrow(Communicator* comm, const vk::Context& ctx) {
   EXPECT_EQ(rig.compositor().allocations(), afterFirst) << "frames no larger than the first";
 }
 
-void checkMemoryMerge(Communicator* comm, const vk::Context& ctx) {
+void checkMemoryMerge(comm::Communicator* comm, const vk::Context& ctx) {
   for (uint32_t registers : {1u, 2u}) {
     CompositorOptions o;
     o.registerLists = registers;

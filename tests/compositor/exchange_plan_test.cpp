@@ -6,11 +6,10 @@
 #include <climits>
 #include <numeric>
 
+#include "comm/communicator.h"
 #include "compositor/count_codec.h"
 #include "compositor/exchange_plan.h"
-#include "compositor/mpi/mpi_communicator.h"
-#include "compositor/mpi/mpi_session.h"
-#include "compositor/replay.h"
+#include "compositor/tools/replay.h"
 
 namespace sm::comp {
 namespace {
@@ -141,20 +140,6 @@ TEST(CompositorFragmentExchange, BoundariesOfTheScansBecomeSizesAndOffsets) {
   EXPECT_THROW(planFragmentExchange(bad, recv, 20), std::logic_error);
 }
 
-TEST(CompositorMpiChunks, TransfersBeyondIntSplitIntoPiecesThatFit) {
-  const uint64_t maxBytes = uint64_t(1) << 30;
-  ChunkPlan p = planChunks(5 * maxBytes + 7, maxBytes);
-  EXPECT_EQ(p.chunks, 5u);
-  EXPECT_EQ(p.tail, 7u);
-  p = planChunks(uint64_t(INT_MAX) + 1, uint64_t(INT_MAX));
-  EXPECT_EQ(p.chunks, 1u);
-  EXPECT_EQ(p.tail, 1u);
-  p = planChunks(100, 7);
-  EXPECT_EQ(p.chunks * 7 + p.tail, 100u);
-  EXPECT_LT(p.tail, 7u);
-  EXPECT_THROW(planChunks(1, 0), CommError);
-}
-
 TEST(CompositorReplay, PredictsBytesAndLoadFromCounts) {
   // 2 ranks, 4 pixels: rank 0 owns pixels 0-1, rank 1 owns 2-3.
   std::vector<std::vector<uint32_t>> counts = {{1, 0, 2, 3}, {0, 4, 0, 1}};
@@ -233,10 +218,10 @@ TEST(CompositorCountCodec, ZeroRunsRoundTripAndNeverLoseAWord) {
   EXPECT_EQ(code, (std::vector<uint32_t>{0, 2, 7, 0})) << "a last single zero is a literal";
   // A code for the wrong number of words is refused, whichever way it is wrong.
   std::vector<uint32_t> four(4);
-  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{3, 0}, four), CommError);
-  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{5, 0}, four), CommError);
-  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{2, 2, 1}, four), CommError);
-  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{4, 0, 9}, four), CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{3, 0}, four), comm::CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{5, 0}, four), comm::CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{2, 2, 1}, four), comm::CommError);
+  EXPECT_THROW(expandZeroRuns(std::vector<uint32_t>{4, 0, 9}, four), comm::CommError);
   // Packing is encode_counts.comp's: counter i at bits (i % per word) * bits of word i / per word.
   std::vector<uint32_t> packed;
   packCounterWords(std::vector<uint32_t>{1, 2, 3}, 4, packed);
@@ -298,19 +283,6 @@ TEST(CompositorReplay, InterleavedOwnershipBalancesAViewCoveringPartOfTheImage) 
     b += inter.ranks[size_t(r)].fragmentsComposited;
   }
   EXPECT_EQ(a, b) << "the same fragments, composited elsewhere";
-}
-
-// An MPI that cannot have other threads running beside its calls is refused with a message (the
-// MPI here gives what is asked, so the check is tested on its own).
-TEST(CompositorMpiSession, ThreadLevelBelowFunneledIsRefused) {
-  EXPECT_NO_THROW(checkThreadLevel(MPI_THREAD_FUNNELED));
-  EXPECT_NO_THROW(checkThreadLevel(MPI_THREAD_MULTIPLE));
-  try {
-    checkThreadLevel(MPI_THREAD_SINGLE);
-    FAIL() << "MPI_THREAD_SINGLE accepted";
-  } catch (const CommError& e) {
-    EXPECT_NE(std::string(e.what()).find("MPI_THREAD_FUNNELED"), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 namespace sm::comp::test {
 namespace {
 
-MpiCommunicator* gWorld = nullptr;
+comm::MpiCommunicator* gWorld = nullptr;
 vk::Context* gContext = nullptr;
 
 class RankFailurePrinter : public ::testing::EmptyTestEventListener {
@@ -31,7 +31,7 @@ class RankFailurePrinter : public ::testing::EmptyTestEventListener {
 
 }  // namespace
 
-MpiCommunicator& mpiWorld() {
+comm::MpiCommunicator& mpiWorld() {
   return *gWorld;
 }
 const vk::Context& mpiContext() {
@@ -47,9 +47,9 @@ int main(int argc, char** argv) {
   GTEST_FLAG_SET(catch_exceptions, false);
   int failed = 0;
   {
-    MpiCommunicator world;
+    sm::comm::MpiCommunicator world;
     test::gWorld = &world;
-    runOrAbort(world, [&] {
+    sm::comm::runOrAbort(world, [&] {
       sm::vk::ContextOptions o;
       o.rayTracing = false;
       sm::vk::Context ctx(o);

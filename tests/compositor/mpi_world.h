@@ -2,12 +2,12 @@
 // this process's Vulkan context (validation on under ctest).
 #pragma once
 
-#include "compositor/mpi/mpi_communicator.h"
+#include "comm/mpi/mpi_communicator.h"
 #include "vk/context.h"
 
 namespace sm::comp::test {
 
-MpiCommunicator& mpiWorld();
+comm::MpiCommunicator& mpiWorld();
 const vk::Context& mpiContext();
 
 }  // namespace sm::comp::test

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/commands.h"
+#include "cli/commands.h"
 #include "common/error.h"
 #include "io_test_util.h"
 #include "support/test_support.h"

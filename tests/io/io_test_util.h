@@ -8,8 +8,11 @@
 
 #include "io/mesh_io.h"
 #include "mesh/unstructured_mesh.h"
+#include "support/test_meshes.h"
 
 namespace sm::io::test {
+
+using sm::test::makeTestMesh;
 
 // tests/io/data/<file>.
 std::string fixturePath(const std::string& file);
@@ -19,11 +22,6 @@ std::string fixturePath(const std::string& file);
 // velocity, temp (3 steps), count, time values 0, 0.25, 1.
 void expectFixtureMesh(const mesh::UnstructuredMesh& m);
 void expectFixtureGeometry(const mesh::UnstructuredMesh& m);  // points, cells, clusters only
-
-// A synthetic mesh of n^3 cube cells, each a hexahedron, two wedges, six tetrahedra or six
-// pyramids around an extra centre point (all four types), in `clusters` slabs along x, with fields
-// "f" (1 step) and "g" (2 steps) and time values 0 and 1.
-mesh::UnstructuredMesh makeTestMesh(int n, int clusters);
 
 // Cells as sortable records (type, cluster, vertex coordinates, field values at the vertices, cell
 // data), so that meshes equal up to point and cell order compare equal.

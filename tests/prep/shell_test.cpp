@@ -46,7 +46,8 @@ TEST(Shell, TetGridShellIsOutwardAndClosed) {
   for (float p : r.positions) EXPECT_LE(std::abs(p), 0.5f + 1e-6f);
 }
 
-// A closed shell: every edge has exactly one neighbour, and adjacency is symmetric and shares the edge.
+// A closed shell: every edge has exactly one neighbour, and adjacency is symmetric and shares the
+// edge.
 TEST(Shell, AdjacencyIsSymmetricOnAClosedShell) {
   auto m = test::hexGrid(2);
   auto r = prepareRank(m, makeGlobalFrame(m.bounds()), PrepOptions{}).rank;

@@ -1,6 +1,6 @@
-// DESIGN.md's hard cases, one test each, with their tolerances stated. Every case requires zero
-// lost rays, no step-limit hit, no NaN, and agreement with the double-precision CPU reference ray
-// by ray: composited RGBA within 2e-4 (float against double over a whole ray) and the first
+// docs/DESIGN.md's hard cases, one test each, with their tolerances stated. Every case requires
+// zero lost rays, no step-limit hit, no NaN, and agreement with the double-precision CPU reference
+// ray by ray: composited RGBA within 2e-4 (float against double over a whole ray) and the first
 // significant fragment's depth within 1e-4 of the scene size.
 #include <gtest/gtest.h>
 

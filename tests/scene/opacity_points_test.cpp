@@ -28,7 +28,7 @@ TEST(OpacityPoints, InterpolateLinearlyBetweenPointsInDataValues) {
   const glm::vec3 rgb = glm::vec3(tf.table[100]);
   const OpacityPoint points[] = {{12.5, 0.0}, {15.0, 0.8}, {17.5, 0.2}};
   setOpacityPoints(tf, points, "--opacity");
-  EXPECT_FLOAT_EQ(alphaAtValue(tf, 10.0), 0.0f);   // the first point's opacity below it
+  EXPECT_FLOAT_EQ(alphaAtValue(tf, 10.0), 0.0f);  // the first point's opacity below it
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 12.5), 0.0f);
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 13.75), 0.4f);  // half way up
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 15.0), 0.8f);

@@ -98,4 +98,86 @@ glm::dvec3 cellCentroid(const mesh::UnstructuredMesh& m, int t, size_t e) {
   return c / double(nv);
 }
 
+mesh::UnstructuredMesh makeTestMesh(int n, int clusters) {
+  mesh::MeshBuilder b("test mesh");
+  std::vector<glm::dvec3> pts;
+  auto grid = [n](int i, int j, int k) { return int64_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+        pts.push_back(glm::dvec3(i, j, k) * 0.1 + glm::dvec3(1e3, -2, 0.5));
+  struct Cube {
+    int i, j, k;
+  };
+  std::vector<Cube> withCentre;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if ((i + j + k) % 4 == 3) {
+          withCentre.push_back({i, j, k});
+          pts.push_back((glm::dvec3(i, j, k) + 0.5) * 0.1 + glm::dvec3(1e3, -2, 0.5));
+        }
+  b.setPoints(pts);
+  uint64_t fileCell = 0, centre = uint64_t(n + 1) * (n + 1) * (n + 1);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int64_t v[8] = {grid(i, j, k),
+                              grid(i + 1, j, k),
+                              grid(i + 1, j + 1, k),
+                              grid(i, j + 1, k),
+                              grid(i, j, k + 1),
+                              grid(i + 1, j, k + 1),
+                              grid(i + 1, j + 1, k + 1),
+                              grid(i, j + 1, k + 1)};
+        const int32_t cl = int32_t(int64_t(i) * clusters / n);
+        auto add = [&](mesh::CellType t, std::initializer_list<int> local, int64_t extra = -1) {
+          int64_t ids[8];
+          size_t c = 0;
+          for (int l : local) ids[c++] = v[l];
+          if (extra >= 0) ids[c++] = extra;
+          b.addCell(t, {ids, c}, fileCell++, cl);
+        };
+        switch ((i + j + k) % 4) {
+          case 0:
+            add(mesh::CellType::Hex, {0, 1, 2, 3, 4, 5, 6, 7});
+            break;
+          case 1:
+            add(mesh::CellType::Wedge, {0, 1, 2, 4, 5, 6});
+            add(mesh::CellType::Wedge, {0, 2, 3, 4, 6, 7});
+            break;
+          case 2:
+            for (auto t : {std::initializer_list<int>{0, 1, 2, 6},
+                           {0, 2, 3, 6},
+                           {0, 3, 7, 6},
+                           {0, 7, 4, 6},
+                           {0, 4, 5, 6},
+                           {0, 5, 1, 6}})
+              add(mesh::CellType::Tet, t);
+            break;
+          default: {
+            const int64_t c = int64_t(centre++);
+            for (auto f : {std::initializer_list<int>{0, 1, 2, 3},
+                           {4, 5, 6, 7},
+                           {0, 1, 5, 4},
+                           {1, 2, 6, 5},
+                           {2, 3, 7, 6},
+                           {3, 0, 4, 7}})
+              add(mesh::CellType::Pyramid, f, c);
+          }
+        }
+      }
+  std::vector<float> f(pts.size()), g0(pts.size()), g1(pts.size());
+  for (size_t p = 0; p < pts.size(); ++p) {
+    f[p] = float(pts[p].x - 1e3 + 2 * pts[p].y);
+    g0[p] = float(p % 97);
+    g1[p] = float(p) * 0.5f;
+  }
+  b.addFieldStep("f", 0, f);
+  b.addFieldStep("g", 0, g0);
+  b.addFieldStep("g", 1, g1);
+  b.setTimeValues({0.0, 1.0});
+  return b.finish();
+}
+
 }  // namespace sm::test

@@ -17,6 +17,11 @@ mesh::UnstructuredMesh wedgeGrid(int n, double size = 1.0);
 // The grid with every cell split into six pyramids around an added centre vertex.
 mesh::UnstructuredMesh pyramidGrid(int n, double size = 1.0);
 
+// A synthetic mesh of n^3 cube cells, each a hexahedron, two wedges, six tetrahedra or six
+// pyramids around an extra centre point (all four types), in `clusters` slabs along x, with fields
+// "f" (1 step) and "g" (2 steps) and time values 0 and 1.
+mesh::UnstructuredMesh makeTestMesh(int n, int clusters);
+
 // The mean of the vertices of element e of type index t.
 glm::dvec3 cellCentroid(const mesh::UnstructuredMesh& m, int t, size_t e);
 

@@ -9,8 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "app/view/camera_controller.h"
 #include "common/error.h"
+#include "viewer/camera_controller.h"
 
 namespace sm::view {
 namespace {

@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "app/view/input.h"
-#include "app/view/overlay.h"
-#include "app/view/script.h"
 #include "common/error.h"
 #include "scene/bitmap_font.h"
+#include "viewer/input.h"
+#include "viewer/overlay.h"
+#include "viewer/script.h"
 
 namespace sm::view {
 namespace {

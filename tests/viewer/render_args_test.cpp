@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "app/view/render_args.h"
-#include "app/view/screen_image.h"
+#include "viewer/render_args.h"
+#include "viewer/screen_image.h"
 
 namespace sm::view {
 namespace {

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "app/view/overlay.h"
 #include "common/file_util.h"
 #include "support/test_support.h"
+#include "viewer/overlay.h"
 #include "viewer_runner.h"
 
 namespace sm::test {

@@ -1,9 +1,10 @@
 // spv_embed IN.spv OUT.cpp NAME NAMESPACE: writes a C++ source defining
 //   std::span<const uint32_t> NAMESPACE::NAME()
-// over a static array holding the SPIR-V words of IN.spv, for cmake/EmbedShaders.cmake. A build-time
-// host tool, never installed. The words are read little-endian, the byte order glslangValidator
-// writes; IN.spv must be a whole number of words and start with the SPIR-V magic number. OUT.cpp is
-// written to OUT.cpp.tmp and renamed, so that a failed run leaves no half-written source behind.
+// over a static array holding the SPIR-V words of IN.spv, for cmake/EmbedShaders.cmake. A
+// build-time host tool, never installed. The words are read little-endian, the byte order
+// glslangValidator writes; IN.spv must be a whole number of words and start with the SPIR-V magic
+// number. OUT.cpp is written to OUT.cpp.tmp and renamed, so that a failed run leaves no
+// half-written source behind.
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -44,12 +45,13 @@ int main(int argc, char** argv) {
     return fail(in + ": read error");
   }
   if (bytes.size() % 4 != 0) {
-    return fail(in + ": " + std::to_string(bytes.size()) + " bytes, not a whole number of 32-bit words");
+    return fail(in + ": " + std::to_string(bytes.size()) +
+                " bytes, not a whole number of 32-bit words");
   }
   const size_t words = bytes.size() / 4;
   auto word = [&](size_t i) {
-    return uint32_t(bytes[4 * i]) | uint32_t(bytes[4 * i + 1]) << 8 | uint32_t(bytes[4 * i + 2]) << 16 |
-           uint32_t(bytes[4 * i + 3]) << 24;
+    return uint32_t(bytes[4 * i]) | uint32_t(bytes[4 * i + 1]) << 8 |
+           uint32_t(bytes[4 * i + 2]) << 16 | uint32_t(bytes[4 * i + 3]) << 24;
   };
   if (words == 0 || word(0) != kSpirvMagic) {
     return fail(in + ": not SPIR-V (no magic number 0x07230203 in its first word)");
@@ -73,8 +75,8 @@ int main(int argc, char** argv) {
       text += '\n';
     }
   }
-  text += "};\nstd::span<const uint32_t> " + name + "() { return {k_" + name + ", " + std::to_string(words) +
-          "}; }\n}\n";
+  text += "};\nstd::span<const uint32_t> " + name + "() { return {k_" + name + ", " +
+          std::to_string(words) + "}; }\n}\n";
 
   std::filesystem::path tmp = out;
   tmp += ".tmp";
