@@ -10,6 +10,8 @@
 4. Vulkan headers and calls appear only in vk/; GLFW only in the viewer; MPI only in comm/mpi/ and
    in situ (the in-situ library, its example, the Python module's binding of it).
 5. Nothing includes an executable's own files.
+6. No top-level module (a folder under src/, or vk, comm, compositor, shaders, python, tools) holds
+   more than 15% of the source lines.
 
 Usage: check_layers.py [SOURCE_ROOT]. Prints one line per violation and exits 1 when there is any;
 tests are not checked.
@@ -189,12 +191,31 @@ def main():
                 errors.append(f"{table[target][0]}/CMakeLists.txt: {target} links {dep} PUBLIC but "
                               "none of its headers includes it (make it PRIVATE)")
 
+    # 6. No module dominates.
+    lines = {}
+    for top in ["vk", "comm", "compositor", "src", "shaders", "python", "tools"]:
+        for dirpath, _, files in os.walk(os.path.join(ROOT, top)):
+            rel = os.path.relpath(dirpath, ROOT).split(os.sep)
+            module = "/".join(rel[:2]) if rel[0] == "src" and len(rel) > 1 else rel[0]
+            for name in files:
+                if name.endswith(SOURCE_EXT + (".glsl", ".comp", ".rgen", ".rint", ".rahit",
+                                               ".rchit", ".rmiss", ".py")):
+                    with open(os.path.join(dirpath, name), encoding="utf-8", errors="replace") as f:
+                        lines[module] = lines.get(module, 0) + sum(1 for _ in f)
+    total = sum(lines.values()) or 1
+    largest = max(lines, key=lines.get) if lines else ""
+    for module, n in sorted(lines.items()):
+        if n > 0.15 * total:
+            errors.append(f"{module}: {n} of {total} source lines ({100 * n / total:.1f}%), more "
+                          "than 15%: split it by what its parts hold")
+
     for e in errors:
         print(e)
     if errors:
         print(f"check_layers: {len(errors)} violation(s)")
         return 1
-    print(f"check_layers: {len(table)} modules, {sum(1 for _ in sources())} files: rules hold")
+    print(f"check_layers: {len(table)} modules, {sum(1 for _ in sources())} files: rules hold; "
+          f"largest module {largest}, {100 * lines.get(largest, 0) / total:.1f}% of {total} lines")
     return 0
 
 

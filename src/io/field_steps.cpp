@@ -7,14 +7,14 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/array_plan.h"
 #include "io/mesh_io.h"
-#include "io/numeric_array.h"
-#include "io/pieced_readers.h"
 #include "io/readers.h"
 #include "io/series.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
+#include "io_core/array_plan.h"
+#include "io_core/numeric_array.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {
@@ -136,7 +136,7 @@ std::vector<FieldStepCount> pvtuFieldSteps(const std::string& path, const ReadOp
                                                        declaredComponents(path, true)};
   std::vector<FieldStepCount> first;
   std::string firstFile;
-  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
+  for (int i : choosePieces(path, files.size(), options)) {
     std::vector<FieldStepCount> steps = vtuFieldSteps(files[i], options);
     for (const FieldStepCount& f : steps) {
       auto d = declared[f.cellData].find(f.name);
@@ -211,7 +211,7 @@ std::vector<float> pvtuFieldStep(const std::string& path, const std::string& fie
                                  const ReadOptions& options, Data data) {
   const std::vector<std::string> files = pvtuPieceFiles(path);
   std::vector<float> values;
-  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options)) {
+  for (int i : choosePieces(path, files.size(), options)) {
     std::vector<float> v = vtuFieldStep(files[i], field, step, options, data);
     values.insert(values.end(), v.begin(), v.end());
   }

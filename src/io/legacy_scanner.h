@@ -7,8 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include "io/numeric_array.h"
-#include "io/text_scan.h"
+#include "io_core/numeric_array.h"
+#include "io_core/text_scan.h"
 
 namespace sm::io {
 

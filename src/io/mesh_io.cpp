@@ -6,9 +6,9 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"
-#include "io/pieced_readers.h"
 #include "io/readers.h"
 #include "io/series.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

@@ -12,7 +12,7 @@
 #include "common/progress.h"
 #include "io/readers.h"
 #include "io/vtu_document.h"
-#include "io/weld.h"
+#include "io_core/weld.h"
 #include "mesh/mesh_builder.h"
 
 namespace sm::io {
@@ -77,22 +77,6 @@ std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile&
   if (files.empty()) throw FileError(path, "names no pieces");
   if (files.size() > 0x7FFFFFFF) throw FileError(path, "names too many pieces");
   return files;
-}
-
-std::vector<int> pvtuChosenPieces(const std::string& path, int count, const ReadOptions& options) {
-  std::vector<int> chosen = options.pieces;
-  if (chosen.empty()) {
-    for (int i = 0; i < count; ++i) chosen.push_back(i);
-    return chosen;
-  }
-  std::sort(chosen.begin(), chosen.end());
-  for (size_t i = 0; i < chosen.size(); ++i) {
-    if (chosen[i] < 0 || chosen[i] >= count)
-      throw FileError(path, "has no piece ", chosen[i], " (pieces 0 to ", count - 1, ")");
-    if (i > 0 && chosen[i] == chosen[i - 1])
-      throw FileError(path, "piece ", chosen[i], " asked for twice");
-  }
-  return chosen;
 }
 
 int countPvtuPieces(const std::string& path) {
@@ -204,7 +188,7 @@ std::vector<DeclaredSize> declaredSizes(const std::string& path, const ReadOptio
   if (fileExtension(path) == ".vtu") return {declaredVtuSize(path)};
   const std::vector<std::string> files = pvtuPieceFiles(path);
   std::vector<DeclaredSize> sizes;
-  for (int i : pvtuChosenPieces(path, static_cast<int>(files.size()), options))
+  for (int i : choosePieces(path, files.size(), options))
     sizes.push_back(declaredVtuSize(files[i]));
   return sizes;
 }
@@ -217,7 +201,7 @@ mesh::UnstructuredMesh readPvtu(const std::string& path, const ReadOptions& opti
                     "') is read from .vtu and .vtk files only");
   const std::vector<std::string> files = pvtuPieceFiles(path, open);
   std::vector<mesh::UnstructuredMesh> pieces;
-  const std::vector<int> chosen = pvtuChosenPieces(path, static_cast<int>(files.size()), options);
+  const std::vector<int> chosen = choosePieces(path, files.size(), options);
   // (Headers are read from files: an in-memory bundle, a fuzzer's, is checked by the weld only.)
   const bool fromFiles = open.target<FileBytes (*)(const std::string&)>() != nullptr;
   if (fromFiles) checkDeclaredTotals(path, files, chosen, options);

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "io/file_bytes.h"
 #include "io/mesh_io.h"
+#include "io_core/file_bytes.h"
 
 namespace sm::io {
 
@@ -41,8 +41,6 @@ bool isPieceIndex(const std::string& path);
 // The piece files a .pvtu (or .vtm) names (paths resolved against its folder).
 std::vector<std::string> pvtuPieceFiles(const std::string& path);
 std::vector<std::string> pvtuPieceFiles(const std::string& path, const OpenFile& open);
-// options.pieces checked against `count` and sorted; every piece when empty.
-std::vector<int> pvtuChosenPieces(const std::string& path, int count, const ReadOptions& options);
 mesh::UnstructuredMesh readLegacyVtk(FileBytes bytes, const std::string& source,
                                      const ReadOptions& options);
 // sideFiles: look for per-vertex field files beside `source` (docs/FORMATS.md); off for memory.

@@ -13,9 +13,9 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/file_bytes.h"
 #include "io/readers.h"
 #include "io/series_same_mesh.h"
+#include "io_core/file_bytes.h"
 
 namespace sm::io {
 namespace {

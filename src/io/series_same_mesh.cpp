@@ -9,10 +9,10 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/hash.h"
-#include "io/numeric_array.h"
 #include "io/readers.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
+#include "io_core/numeric_array.h"
 #include "mesh/unstructured_mesh.h"
 
 namespace sm::io {
@@ -100,7 +100,7 @@ uint64_t encodedDigestOf(const std::string& file, const ReadOptions& options) {
     files.push_back(file);
   } else if (isPieceIndex(file)) {
     const std::vector<std::string> all = pvtuPieceFiles(file);
-    for (int i : pvtuChosenPieces(file, int(all.size()), options)) files.push_back(all[size_t(i)]);
+    for (int i : choosePieces(file, all.size(), options)) files.push_back(all[size_t(i)]);
   } else {
     return 0;
   }
@@ -200,7 +200,7 @@ StepMesh readStepMesh(const std::string& file, const ReadOptions& options) {
   if (isPieceIndex(file)) {
     StepMesh out;
     const std::vector<std::string> files = pvtuPieceFiles(file);
-    for (int i : pvtuChosenPieces(file, int(files.size()), options))
+    for (int i : choosePieces(file, files.size(), options))
       appendVtuMesh(files[size_t(i)], options, out);
     return out;
   }

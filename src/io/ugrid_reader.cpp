@@ -10,10 +10,10 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/array_plan.h"
-#include "io/numeric_array.h"
 #include "io/readers.h"
-#include "io/text_scan.h"
+#include "io_core/array_plan.h"
+#include "io_core/numeric_array.h"
+#include "io_core/text_scan.h"
 #include "mesh/mesh_builder.h"
 
 namespace sm::io {

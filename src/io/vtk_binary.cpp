@@ -8,7 +8,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/parallel.h"
-#include "io/text_scan.h"
+#include "io_core/text_scan.h"
 
 namespace sm::io {
 namespace {

@@ -14,8 +14,8 @@
 
 #include "io/base64.h"
 #include "io/block_codec.h"
-#include "io/numeric_array.h"
-#include "io/read_stop.h"
+#include "io_core/numeric_array.h"
+#include "io_core/read_stop.h"
 
 namespace sm::io {
 

@@ -1,8 +1,8 @@
 #include "io/vtk_xml_names.h"
 
 #include "common/error.h"
-#include "io/array_plan.h"
 #include "io/mesh_io.h"
+#include "io_core/array_plan.h"
 
 namespace sm::io {
 

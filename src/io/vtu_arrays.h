@@ -8,8 +8,8 @@
 
 #include <pugixml.hpp>
 
-#include "io/array_plan.h"
 #include "io/vtu_document.h"
+#include "io_core/array_plan.h"
 
 namespace sm::io {
 

@@ -7,7 +7,7 @@
 
 #include "common/error.h"
 #include "common/hash.h"
-#include "io/text_scan.h"
+#include "io_core/text_scan.h"
 
 namespace sm::io {
 namespace {

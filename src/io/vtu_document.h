@@ -10,9 +10,9 @@
 
 #include <pugixml.hpp>
 
-#include "io/file_bytes.h"
-#include "io/numeric_array.h"
 #include "io/vtk_binary.h"
+#include "io_core/file_bytes.h"
+#include "io_core/numeric_array.h"
 
 namespace sm::io {
 

@@ -6,13 +6,13 @@
 
 #include "common/error.h"
 #include "common/log.h"
-#include "io/array_plan.h"
 #include "io/ghost_cells.h"
 #include "io/polyhedra.h"
 #include "io/readers.h"
-#include "io/text_scan.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
+#include "io_core/array_plan.h"
+#include "io_core/text_scan.h"
 #include "mesh/mesh_builder.h"
 
 namespace sm::io {

@@ -15,10 +15,10 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/array_plan.h"
 #include "io/mesh_io.h"
 #include "io/vtk_binary.h"
 #include "io/vtk_xml_names.h"
+#include "io_core/array_plan.h"
 
 namespace sm::io {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/read_stop.h"
+#include "io_core/read_stop.h"
 #include "pipeline/rank_share.h"
 #include "prep/prepared_rank.h"
 

@@ -16,7 +16,7 @@
 #include "comm/reductions.h"
 #include "common/error.h"
 #include "gen/generate.h"
-#include "io/weld.h"
+#include "io_core/weld.h"
 #include "partition/partition.h"
 #include "pipeline/cell_data_share.h"
 #include "pipeline/rank_share.h"

@@ -11,8 +11,8 @@
 #include "format_files.h"
 #include "format_test_util.h"
 #include "io/mesh_io.h"
-#include "io/pieced_readers.h"
-#include "io/read_stop.h"
+#include "io_core/read_stop.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

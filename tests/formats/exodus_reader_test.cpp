@@ -16,7 +16,7 @@
 #include "format_files.h"
 #include "format_test_util.h"
 #include "io/mesh_io.h"
-#include "io/pieced_readers.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

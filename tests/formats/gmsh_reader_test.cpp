@@ -12,8 +12,8 @@
 #include "common/error.h"
 #include "format_files.h"
 #include "format_test_util.h"
-#include "io/gmsh_sections.h"
-#include "io/pieced_readers.h"
+#include "solver_io/gmsh_sections.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::test {
 std::vector<std::array<int, 3>> gmshElementTable();  // gmsh_files.cpp

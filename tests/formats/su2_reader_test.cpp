@@ -8,7 +8,7 @@
 #include "common/error.h"
 #include "format_files.h"
 #include "format_test_util.h"
-#include "io/pieced_readers.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

@@ -4,13 +4,13 @@
 #include <numeric>
 
 #include "common/error.h"
-#include "io/array_plan.h"
 #include "io/base64.h"
-#include "io/numeric_array.h"
-#include "io/text_scan.h"
 #include "io/vtk_binary.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
+#include "io_core/array_plan.h"
+#include "io_core/numeric_array.h"
+#include "io_core/text_scan.h"
 #include "io_test_util.h"
 
 namespace sm::io {

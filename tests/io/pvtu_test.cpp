@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "io/mesh_io.h"
-#include "io/weld.h"
+#include "io_core/weld.h"
 #include "io_test_util.h"
 #include "support/allocation_cap.h"
 #include "support/test_support.h"

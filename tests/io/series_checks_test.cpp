@@ -6,10 +6,10 @@
 #include <functional>
 #include <string>
 
-#include "io/file_bytes.h"
 #include "io/mesh_io.h"
 #include "io/vtu_arrays.h"
 #include "io/vtu_document.h"
+#include "io_core/file_bytes.h"
 #include "io_test_util.h"
 #include "support/test_support.h"
 

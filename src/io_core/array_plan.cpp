@@ -1,9 +1,10 @@
-#include "io/array_plan.h"
+#include "io_core/array_plan.h"
 
 #include <algorithm>
 #include <charconv>
 
 #include "common/error.h"
+#include "mesh/unstructured_mesh.h"
 
 namespace sm::io {
 namespace {

@@ -1,5 +1,5 @@
 // CGNS headers: bases, zones, solutions and time steps (docs/FORMATS.md, CGNS).
-#include "io/cgns_layout.h"
+#include "solver_io/cgns_layout.h"
 
 #include <cgns_io.h>
 #include <cgnslib.h>

@@ -10,11 +10,11 @@
 #include <map>
 
 #include "common/error.h"
-#include "io/array_plan.h"
-#include "io/gmsh_sections.h"
-#include "io/pieced_readers.h"
-#include "io/weld.h"
+#include "io_core/array_plan.h"
+#include "io_core/weld.h"
 #include "mesh/mesh_builder.h"
+#include "solver_io/gmsh_sections.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/weld.h"
+#include "io_core/weld.h"
 
 #include <algorithm>
 #include <bit>

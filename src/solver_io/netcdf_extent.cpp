@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/error.h"
-#include "io/exodus_file.h"
-#include "io/file_bytes.h"
+#include "io_core/file_bytes.h"
+#include "solver_io/exodus_file.h"
 
 namespace sm::io {
 namespace {

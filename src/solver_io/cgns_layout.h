@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "io/pieced_readers.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io::cgns {
 

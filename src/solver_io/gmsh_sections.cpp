@@ -3,14 +3,14 @@
 // size_t of 8, doubles), while $MeshFormat and the headers of $NodeData and $ElementData stay
 // text; their entries are binary (an int tag and the doubles). Every count is checked against the
 // bytes left before anything is allocated, since these readers are fuzzed.
-#include "io/gmsh_sections.h"
+#include "solver_io/gmsh_sections.h"
 
 #include <algorithm>
 #include <cstring>
 
 #include "common/error.h"
-#include "io/numeric_array.h"
-#include "io/text_scan.h"
+#include "io_core/numeric_array.h"
+#include "io_core/text_scan.h"
 
 namespace sm::io {
 

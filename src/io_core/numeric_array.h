@@ -12,7 +12,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "io/scalar_type.h"
+#include "io_core/scalar_type.h"
 
 namespace sm::io {
 

@@ -1,4 +1,4 @@
-#include "io/file_bytes.h"
+#include "io_core/file_bytes.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>

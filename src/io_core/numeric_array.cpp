@@ -1,6 +1,6 @@
-#include "io/numeric_array.h"
+#include "io_core/numeric_array.h"
 
-#include "io/array_plan.h"
+#include "io_core/array_plan.h"
 
 #include <sys/mman.h>
 

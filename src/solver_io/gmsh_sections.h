@@ -12,8 +12,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "io/file_bytes.h"
-#include "io/read_stop.h"
+#include "io_core/file_bytes.h"
+#include "io_core/read_stop.h"
 
 namespace sm::io {
 

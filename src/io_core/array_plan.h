@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/mesh_io.h"
+#include "io_core/read_options.h"
 
 namespace sm::io {
 

@@ -12,9 +12,9 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/exodus_file.h"
-#include "io/file_bytes.h"
-#include "io/pieced_readers.h"
+#include "io_core/file_bytes.h"
+#include "solver_io/exodus_file.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

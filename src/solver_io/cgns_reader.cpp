@@ -7,10 +7,10 @@
 #include <limits>
 
 #include "common/log.h"
-#include "io/cgns_layout.h"
-#include "io/read_stop.h"
-#include "io/weld.h"
+#include "io_core/read_stop.h"
+#include "io_core/weld.h"
 #include "mesh/mesh_builder.h"
+#include "solver_io/cgns_layout.h"
 
 namespace sm::io {
 namespace {

@@ -2,7 +2,7 @@
 // CGNS zones, Exodus II element blocks (or the files of a decomposed mesh), SU2 zones and Gmsh
 // partitions. Piece i becomes cluster i, so that ranks can read some pieces each (ReadOptions::
 // pieces) and the renderer has the solver's partitions; the pieces read are welded as a .pvtu's are
-// (io/weld.h). Time steps are the file's own (solutions, time steps, $NodeData steps).
+// (io_core/weld.h). Time steps are the file's own (solutions, time steps, $NodeData steps).
 #pragma once
 
 #include <cstdint>
@@ -10,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "io/file_bytes.h"
-#include "io/mesh_io.h"
+#include "io_core/file_bytes.h"
+#include "io_core/read_options.h"
+#include "mesh/unstructured_mesh.h"
 
 namespace sm::io {
 
@@ -78,9 +79,5 @@ mesh::UnstructuredMesh readPiecedBytes(PiecedFormat format, const FileBytes& byt
 // The fields readPieced(format, path, options) loads, with their steps, from the layout.
 std::vector<FieldStepCount> piecedFieldSteps(const std::string& path, const PiecedLayout& layout,
                                              const ReadOptions& options);
-
-// options.pieces checked against `count` (sm::FileError naming `path` for one out of range or
-// given twice) and sorted; every piece when empty.
-std::vector<int> choosePieces(const std::string& path, size_t count, const ReadOptions& options);
 
 }  // namespace sm::io

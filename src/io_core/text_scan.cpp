@@ -1,4 +1,4 @@
-#include "io/text_scan.h"
+#include "io_core/text_scan.h"
 
 #include <algorithm>
 #include <cctype>

@@ -14,10 +14,10 @@
 
 #include "common/error.h"
 #include "common/log.h"
-#include "io/exodus_file.h"
-#include "io/pieced_readers.h"
-#include "io/weld.h"
+#include "io_core/weld.h"
 #include "mesh/mesh_builder.h"
+#include "solver_io/exodus_file.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

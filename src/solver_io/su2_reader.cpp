@@ -6,10 +6,10 @@
 #include <cstring>
 
 #include "common/error.h"
-#include "io/pieced_readers.h"
-#include "io/text_scan.h"
-#include "io/weld.h"
+#include "io_core/text_scan.h"
+#include "io_core/weld.h"
 #include "mesh/mesh_builder.h"
+#include "solver_io/pieced_readers.h"
 
 namespace sm::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/pieced_readers.h"
+#include "solver_io/pieced_readers.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,8 +7,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
-#include "io/array_plan.h"
-#include "io/readers.h"
+#include "io_core/array_plan.h"
 
 namespace sm::io {
 namespace {
@@ -215,10 +214,6 @@ std::vector<FieldStepCount> piecedFieldSteps(const std::string& path, const Piec
     throw FileError(path, "has no field '", request, "' (it has ", fieldNames(layout), ")");
   }
   return out;
-}
-
-std::vector<int> choosePieces(const std::string& path, size_t count, const ReadOptions& options) {
-  return pvtuChosenPieces(path, static_cast<int>(count), options);
 }
 
 }  // namespace sm::io

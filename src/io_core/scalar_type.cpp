@@ -1,4 +1,4 @@
-#include "io/scalar_type.h"
+#include "io_core/scalar_type.h"
 
 #include <algorithm>
 #include <array>
