@@ -8,7 +8,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "cli/program.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/parallel.h"
@@ -57,12 +56,6 @@ uint64_t parseCount(const std::string& option, const std::string& item) {
 }
 
 }  // namespace
-
-std::string shellmarchExecutable() {
-  const std::string path = joinPath(app::executableDir(), "shellmarch");
-  if (!fileExists(path)) throw Error("cannot find the shellmarch program beside this one: ", path);
-  return path;
-}
 
 nlohmann::json machineJson() {
   nlohmann::json m;

@@ -19,10 +19,6 @@ namespace sm::app::bench {
 
 // CPU model, logical cores, memory, load averages, kernel: timings on a shared machine mean
 // little without the load they were taken under.
-// The `shellmarch` program the benchmarks run (render, generate): the one installed or built
-// beside this executable.
-std::string shellmarchExecutable();
-
 nlohmann::json machineJson();
 std::string machineLine(const nlohmann::json& machine);  // one line for the table header
 

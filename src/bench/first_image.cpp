@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "bench/bench_common.h"
+#include "cli/program.h"
 #include "common/error.h"
 #include "common/file_util.h"
 
@@ -20,7 +21,7 @@ std::string number(double v) {
 std::vector<std::string> renderCommand(const RenderArgs& a, const Scenes& sc,
                                        const std::string& mesh, int w, int h,
                                        const std::string& out, const std::string& stats) {
-  const std::string self = shellmarchExecutable();
+  const std::string self = siblingExecutable("shellmarch");
   std::vector<std::string> cmd = {self,
                                   "render",
                                   mesh,

@@ -11,6 +11,7 @@
 
 #include "bench/bench_common.h"
 #include "bench/scale_fit.h"
+#include "cli/program.h"
 #include "common/error.h"
 #include "common/file_util.h"
 #include "io/mesh_io.h"
@@ -141,7 +142,7 @@ nlohmann::json generateMesh(const ScaleArgs& a, uint64_t target) {
     }
   }
   std::filesystem::create_directories(a.dataDir);
-  std::vector<std::string> argv = {shellmarchExecutable(), "generate"};
+  std::vector<std::string> argv = {siblingExecutable("shellmarch"), "generate"};
   if (a.method != "gmsh") argv.insert(argv.end(), {"--method", a.method});
   argv.insert(argv.end(), {"--elements", std::to_string(target), "--out", path});
   if (a.clusters > 0) argv.insert(argv.end(), {"--clusters", std::to_string(a.clusters)});
@@ -194,7 +195,7 @@ nlohmann::json renderOnce(const ScaleArgs& a, const std::string& mesh, const std
   const std::string stats = base + ".stats.json", image = base + ".png";
   std::filesystem::remove(stats);
   const std::vector<std::string> argv = {a.mpirun, "-n", std::to_string(ranks), "--oversubscribe",
-                                         shellmarchExecutable(), "render", mesh,
+                                         siblingExecutable("shellmarch"), "render", mesh,
                                          // The grid mesh is a flat annulus: along its axis
                                          // the disc fills the image, where the default
                                          // view leaves four pixels in five empty.

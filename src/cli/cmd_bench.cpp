@@ -11,23 +11,14 @@
 
 #include "cli/commands.h"
 #include "cli/program.h"
-#include "common/file_util.h"
 #include "common/log.h"
 
 namespace sm::app {
 
-std::string benchExecutable() {
-  const std::string path = joinPath(executableDir(), "shellmarch-bench");
-  if (!fileExists(path))
-    throw Error("bench: '", path, "' is missing (the benchmarks are a separate executable, built ",
-                "and installed beside shellmarch)");
-  return path;
-}
-
 namespace {
 
 [[noreturn]] void runBench(const std::vector<std::string>& args) {
-  const std::string exe = benchExecutable();
+  const std::string exe = siblingExecutable("shellmarch-bench");
   std::vector<std::string> words = {"shellmarch bench"};
   if (log::level() == log::Level::Info) words.push_back("--verbose");
   if (log::level() == log::Level::Quiet) words.push_back("--quiet");

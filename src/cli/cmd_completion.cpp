@@ -12,6 +12,7 @@
 
 #include "cli/command_words.h"
 #include "cli/commands.h"
+#include "cli/program.h"
 #include "scene/transfer_function.h"
 
 namespace sm::app {
@@ -38,7 +39,7 @@ std::map<std::string, std::vector<std::string>> fixedValues() {
 
 // shellmarch-bench's command words under "bench" (its --completion-words lines).
 void addBenchWords(std::vector<CommandWords>& commands, std::set<std::string>& valued) {
-  const std::string cmd = "'" + benchExecutable() + "' --completion-words";
+  const std::string cmd = "'" + siblingExecutable("shellmarch-bench") + "' --completion-words";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) throw Error("completion: cannot run ", cmd);
   std::string text;

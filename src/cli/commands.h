@@ -19,11 +19,9 @@ class UsageError : public Error {
 void registerInfo(CLI::App& app);  // cmd_info.cpp
 // What `info --json FILE` prints, on one line (cmd_info.cpp; the Python module's info()).
 std::string infoJsonText(const std::string& file);
-void registerGenerate(CLI::App& app);  // cmd_generate.cpp
-void registerRender(CLI::App& app);    // cmd_render.cpp
-void registerBench(CLI::App& app);     // cmd_bench.cpp: runs shellmarch-bench
-// shellmarch-bench beside this executable; throws when it is missing.
-std::string benchExecutable();
+void registerGenerate(CLI::App& app);    // cmd_generate.cpp
+void registerRender(CLI::App& app);      // cmd_render.cpp
+void registerBench(CLI::App& app);       // cmd_bench.cpp: runs shellmarch-bench
 void registerView(CLI::App& app);        // cmd_view.cpp
 void registerDevices(CLI::App& app);     // cmd_devices.cpp
 void registerCompare(CLI::App& app);     // cmd_compare.cpp

@@ -131,4 +131,13 @@ std::string executableDir() {
   return std::filesystem::path(path).parent_path().string();
 }
 
+std::string siblingExecutable(const std::string& name) {
+  const std::string path = (std::filesystem::path(executableDir()) / name).string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw Error("'", path, "' is missing (shellmarch and shellmarch-bench are built and installed ",
+                "side by side)");
+  return path;
+}
+
 }  // namespace sm::app

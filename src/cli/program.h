@@ -20,5 +20,8 @@ int runProgram(CLI::App& app, int argc, char** argv);
 // and built. A binary replaced while it runs (a rebuild during a long benchmark) still names the
 // new file, not "PATH (deleted)".
 std::string executableDir();
+// `name` (shellmarch or shellmarch-bench) beside this executable; throws naming the path when it
+// is missing.
+std::string siblingExecutable(const std::string& name);
 
 }  // namespace sm::app

@@ -41,7 +41,7 @@ void cellDataToPointsOverRanks(mesh::UnstructuredMesh& m, bool holdsPieces,
     return;
   }
   checkSameCellFields(m, holdsPieces, pieces, comm);
-  const uint64_t columns = 1 + uint64_t(comm::maxOf(comm, double(cellFieldSteps(m))));
+  const uint64_t columns = 1 + comm::maxOf(comm, cellFieldSteps(m));
   border::BorderExchange border(m, comm);
   // Column 0 is the counts, then every step of every field in the order of m.cellFields (a rank
   // without pieces has none of its own). They go in rounds of at most kBatch columns: few rounds,
