@@ -12,6 +12,8 @@
 5. Nothing includes an executable's own files.
 6. No top-level module (a folder under src/, or vk, comm, compositor, shaders, python, tools) holds
    more than 15% of the source lines.
+7. The renderer takes boxes, not meshes: src/render includes no header of src/mesh but
+   mesh/bounds.h (defaults that read the mesh live in scene/view_defaults.h).
 
 Usage: check_layers.py [SOURCE_ROOT]. Prints one line per violation and exits 1 when there is any;
 tests are not checked.
@@ -158,6 +160,8 @@ def main():
                 continue
             if inc.endswith(".cpp"):
                 errors.append(f"{path}: includes {inc}, an executable's source")
+            if within(path, ["src/render"]) and inc.startswith("mesh/") and inc != "mesh/bounds.h":
+                errors.append(f"{path}: includes {inc}: the renderer takes boxes, not meshes")
             for ex in EXECUTABLE_FOLDERS:
                 if inc.startswith(ex + "/") and not path.startswith(ex + "/"):
                     errors.append(f"{path}: includes {inc}, a header of an executable")

@@ -51,6 +51,7 @@ struct CompositorOptions {
   // Which rank composites which pixels (exchange_plan.h). Interleaved balances the compositing
   // work whatever part of the image the data covers; Ranges is the paper's layout.
   PixelOwnership ownership = PixelOwnership::Interleaved;
+  bool operator==(const CompositorOptions&) const = default;
 };
 
 uint32_t fragmentBytes(Encoding e);

@@ -260,7 +260,7 @@ void Context::pickDevice(const ContextOptions& o) {
   }
   if (best < 0) {
     std::string what = o.device.empty() ? std::string("no Vulkan device has what shellmarch needs")
-                                        : "--device " + o.device + ": no usable device matches";
+                                        : "device '" + o.device + "': no usable device matches";
     if (o.rayTracing && o.tracer != Tracer::Auto)
       what += std::string(" for the ") + tracerName(o.tracer) + " tracer";
     if (n == 0) what = "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)";

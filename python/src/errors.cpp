@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "common/error.h"
+#include "common/setting_error.h"
+#include "session/setting_names.h"
 #include "shellmarch/insitu.h"
 
 namespace sm::python {
@@ -32,6 +34,8 @@ void registerErrors(pybind11::module_& m) {
   pybind11::register_local_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const SettingError& e) {  // named by its keyword argument
+      raise(PyExc_ValueError, session::pythonMessage(e));
     } catch (const FileError& e) {
       raise(unreadable(e.file()) ? PyExc_OSError : PyExc_ValueError, e.what());
     } catch (const Error& e) {

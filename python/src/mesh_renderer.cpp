@@ -101,7 +101,8 @@ std::optional<Image8> MeshRenderer::render(const std::vector<std::string>& args)
   s.width = job.width;
   s.height = job.height;
   s.field = job.field.empty() ? firstField_ : job.field;
-  const scene::Camera c = app::makeCamera(job, whole_);  // the CLI's camera, from the same bounds
+  // The CLI's camera, from the same bounds.
+  const scene::Camera c = session::makeCamera(app::frameRequest(job), whole_);
   s.camera = api::Camera{arr(c.eye), arr(c.at), arr(c.up), c.fovyDeg};
   s.colormap = job.colormap;
   if (job.range) s.range = std::array<double, 2>{job.range->first, job.range->second};
@@ -120,7 +121,7 @@ std::optional<Image8> MeshRenderer::render(const std::vector<std::string>& args)
     scene::TransferFunction tf = scene::makeTransferFunction(job.colormap);
     std::tie(tf.lo, tf.hi) = job.range ? *job.range : opacityRange(s.field);
     if (job.logScale) tf.scale = scene::ScalarScale::Log;
-    scene::setOpacityPoints(tf, job.opacityPoints, "--opacity");
+    scene::setOpacityPoints(tf, job.opacityPoints);
     for (const glm::vec4& e : tf.table) s.table.push_back({e.r, e.g, e.b, e.a});
   }
   const api::Image img = renderer_->render(s);

@@ -28,8 +28,8 @@
 #include "pipeline/rank_pipeline.h"
 #include "pipeline/rank_share.h"
 #include "prep/vertex_order.h"
-#include "render/frame_defaults.h"
-#include "render/gpu_scene.h"
+#include "scene/view_defaults.h"
+#include "session/rank_session.h"
 #include "vk/context.h"
 
 #ifndef SHELLMARCH_SHARED_DATA_DIR
@@ -117,9 +117,9 @@ Loaded load(const Case& c, int w, int h) {
   s.transferFunction.lo = c.range ? c.range->first : r.lo;
   s.transferFunction.hi = c.range ? c.range->second : (r.hi > r.lo ? r.hi : r.lo + 1);
   s.transferFunction.opacityScale = c.opacityScale;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(l.mesh.bounds());
-  l.h = render::elementSizeSum(l.mesh).mean();
-  s.dt = render::elementStep(l.h);
+  s.transferFunction.unitDistance = scene::defaultUnitDistance(l.mesh.bounds());
+  l.h = scene::elementSizeSum(l.mesh).mean();
+  s.dt = scene::elementStep(l.h);
   s.earlyTermination = 2.0;  // off: rungs differ by what they say only
   return l;
 }
@@ -151,9 +151,10 @@ void singleRankRungs(const AccuracyArgs& a, const Loaded& l, std::vector<Rung>& 
   PreparedShare p = prepareShare(share, prep::PrepOptions{true}, "", 0, 1);
   vk::ContextOptions o;
   o.device = a.device;
-  vk::Context ctx(o);
-  render::GpuScene scene(ctx, p.rank);
-  scene.setScalars(prep::gatherScalars(p.rank, l.values));
+  session::RankSession session(o, nullptr);
+  const vk::Context& ctx = session.context();
+  session.setScene(p.rank, std::move(p.rank.positions))
+      .setScalars(prep::gatherScalars(p.rank, l.values));
   const struct {
     const char *tag, *label;
     double k;
@@ -180,7 +181,7 @@ void singleRankRungs(const AccuracyArgs& a, const Loaded& l, std::vector<Rung>& 
   for (int round = 0; round < a.rounds; ++round) {
     std::vector<double> ms(ladder.size());
     for (size_t i = 0; i < ladder.size(); ++i) {
-      RenderMeasurement m = measureRender(ctx, scene, ladder[i].second, a.runs);
+      RenderMeasurement m = measureRender(session, ladder[i].second, a.runs);
       ms[i] = median(m.totalMs);
       frames[i].insert(frames[i].end(), m.totalMs.begin(), m.totalMs.end());
       Rung& r = ladder[i].first;

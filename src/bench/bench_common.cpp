@@ -11,9 +11,9 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/parallel.h"
-#include "render/frame_defaults.h"
 #include "scene/camera.h"
 #include "scene/transfer_function.h"
+#include "scene/view_defaults.h"
 
 namespace sm::app::bench {
 namespace {
@@ -182,8 +182,8 @@ render::RenderSettings isoFrame(const mesh::UnstructuredMesh& m, const mesh::Fie
   const mesh::Range r = mesh::fieldRange(f, 0);
   s.transferFunction.lo = r.lo;
   s.transferFunction.hi = r.hi > r.lo ? r.hi : r.lo + 1;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(m.bounds());
-  s.dt = render::elementStep(render::elementSizeSum(m).mean());
+  s.transferFunction.unitDistance = scene::defaultUnitDistance(m.bounds());
+  s.dt = scene::elementStep(scene::elementSizeSum(m).mean());
   return s;
 }
 

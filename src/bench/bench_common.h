@@ -53,7 +53,7 @@ void writeTextFile(const std::string& path, const std::string& text);
 
 // The frame the features and counts benchmarks render: `m` framed from the iso view, field `f`'s
 // step-0 range mapped through `colormap`, the default unit distance of `m`, and half its mean
-// element size as the step (render::elementStep: these cubes are coarse enough for the default
+// element size as the step (scene::elementStep: these cubes are coarse enough for the default
 // step's cap, which came after their recorded figures).
 render::RenderSettings isoFrame(const mesh::UnstructuredMesh& m, const mesh::Field& f,
                                 const std::string& colormap, int width, int height);

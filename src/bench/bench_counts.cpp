@@ -20,7 +20,6 @@
 #include "io/mesh_io.h"
 #include "partition/partition.h"
 #include "prep/prepare.h"
-#include "render/frame_defaults.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "vk/context.h"
@@ -72,7 +71,7 @@ DumpSummary dumpRealCounts(const vk::Context& ctx, const mesh::UnstructuredMesh&
     std::vector<float> values(e.originalPoint.size());
     for (size_t i = 0; i < values.size(); ++i) values[i] = field.steps[0][e.originalPoint[i]];
     prep::PrepResult p = prep::prepareRank(e.mesh, frame, prep::PrepOptions{true});
-    render::GpuScene gpu(ctx, p.rank);
+    render::GpuScene gpu(ctx, p.rank, std::move(p.rank.positions));
     gpu.setScalars(prep::gatherScalars(p.rank, values));
     render::Renderer renderer(ctx, gpu, compositor);
     const render::FrameResult result = renderer.render(settings);

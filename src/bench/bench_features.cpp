@@ -19,7 +19,6 @@
 #include "io/mesh_io.h"
 #include "pipeline/rank_pipeline.h"
 #include "prep/memory_report.h"
-#include "render/frame_defaults.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "vk/context.h"
@@ -57,7 +56,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, mesh::UnstructuredMesh
     share.mesh = m;
     share.wholeBounds = m.bounds();
     PreparedShare p = prepareShare(share, prep::PrepOptions{compact}, "", 0, 1);
-    auto gpu = std::make_unique<render::GpuScene>(ctx, p.rank);
+    auto gpu = std::make_unique<render::GpuScene>(ctx, p.rank, std::move(p.rank.positions));
     gpu->setScalars(prep::gatherScalars(p.rank, sc->values));
     (compact ? sc->gpuCompact : sc->gpuPlain) = std::move(gpu);
     (compact ? sc->compact : sc->plain) = std::move(p);

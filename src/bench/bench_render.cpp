@@ -22,6 +22,8 @@
 #include "common/file_util.h"
 #include "common/timer.h"
 #include "prep/memory_report.h"
+#include "render/step_limits.h"
+#include "session/rank_session.h"
 
 namespace sm::app::bench {
 
@@ -35,9 +37,9 @@ render::RenderSettings settingsFor(const RenderArgs& a, const Scenes& sc, int w,
   s.transferFunction.lo = sc.range.first;
   s.transferFunction.hi = sc.range.second;
   s.transferFunction.opacityScale = a.opacityScale;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(sc.share.wholeBounds);
+  s.transferFunction.unitDistance = scene::defaultUnitDistance(sc.share.wholeBounds);
   s.dt =
-      a.step > 0 ? a.step : render::defaultStep(sc.share.elementSize.mean(), sc.share.wholeBounds);
+      a.step > 0 ? a.step : scene::defaultStep(sc.share.elementSize.mean(), sc.share.wholeBounds);
   if (a.step > 0) render::checkStepNotBeyondData(a.step, sc.share.wholeBounds);
   // The paper's comparison: a step against VTK's sample distance, and coarser steps for equal
   // error; the element-exact runs (--exact) ask for it.
@@ -101,7 +103,7 @@ Scenes loadScenes(const RenderArgs& a, const std::string& path) {
 
 // Compacted frames at coarser sample spacings: shellmarch's speed at a given error, so that the
 // goals can compare with VTK at equal or lower error (VTK's cost does not depend on a step).
-void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::GpuScene& compact,
+void measureCoarser(const RenderArgs& a, session::RankSession& compact,
                     const render::RenderSettings& s, nlohmann::json& j, RenderImages& images) {
   j["shellmarch"]["compacted_coarser"] = nlohmann::json::array();
   // The stage-split tracer at the default step: traversal and marching timed apart, and what
@@ -109,7 +111,7 @@ void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::G
   {
     render::RenderSettings split = s;
     split.segmentCacheBytes = 0;
-    RenderMeasurement m = measureRender(ctx, compact, split, a.runs);
+    RenderMeasurement m = measureRender(compact, split, a.runs);
     nlohmann::json mj = toJson(m);
     mj["dt_scale"] = 1.0;
     mj["dt"] = split.dt;
@@ -122,7 +124,7 @@ void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::G
     const double k = parsePositive("--coarser", item);
     render::RenderSettings sk = s;
     sk.dt *= k;
-    RenderMeasurement m = measureRender(ctx, compact, sk, a.runs);
+    RenderMeasurement m = measureRender(compact, sk, a.runs);
     nlohmann::json mj = toJson(m);
     mj["dt_scale"] = k;
     mj["dt"] = sk.dt;
@@ -137,7 +139,7 @@ void measureCoarser(const RenderArgs& a, const vk::Context& ctx, const render::G
     render::RenderSettings sk = s;
     sk.dt *= k;
     sk.integration = render::Integration::ElementExact;
-    RenderMeasurement m = measureRender(ctx, compact, sk, a.runs);
+    RenderMeasurement m = measureRender(compact, sk, a.runs);
     nlohmann::json mj = toJson(m);
     mj["dt_scale"] = k;
     mj["dt"] = sk.dt;
@@ -168,14 +170,14 @@ void addReferences(const RenderArgs& a, const Scenes& sc, const ref::ReferenceRe
 }
 
 // The GPU frames of both scenes at one size, then the references (CPU) for that view.
-nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, const vk::Context& ctx,
-                           const render::GpuScene& compact, const render::GpuScene& plain,
-                           const ref::ReferenceRenderer& ref, int w, int h, RenderImages& images) {
+nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, session::RankSession& compact,
+                           session::RankSession& plain, const ref::ReferenceRenderer& ref, int w,
+                           int h, RenderImages& images) {
   render::RenderSettings s = settingsFor(a, sc, w, h);
   std::fprintf(stderr, "rendering %dx%d: compacted, plain, coarser steps (%d warm frames each)\n",
                w, h, a.runs);
-  RenderMeasurement mc = measureRender(ctx, compact, s, a.runs);
-  RenderMeasurement mp = measureRender(ctx, plain, s, a.runs);
+  RenderMeasurement mc = measureRender(compact, s, a.runs);
+  RenderMeasurement mp = measureRender(plain, s, a.runs);
   nlohmann::json j;
   j["width"] = w;
   j["height"] = h;
@@ -188,7 +190,7 @@ nlohmann::json measureSize(const RenderArgs& a, const Scenes& sc, const vk::Cont
                       mc.image);
   images.renderers = {{"shellmarch compacted", std::move(mc.image)},
                       {"shellmarch plain", std::move(mp.image)}};
-  measureCoarser(a, ctx, compact, s, j, images);
+  measureCoarser(a, compact, s, j, images);
   addReferences(a, sc, ref, s, j, images);
   return j;
 }
@@ -251,11 +253,15 @@ void runRenderBench(RenderArgs& a) {
   vo.tracer = parseTracer(a.tracer);
   vk::Context ctx(vo);
   t.reset();
-  render::GpuScene compact(ctx, sc.compact.rank), plain(ctx, sc.plain.rank);
-  compact.setScalars(fieldStep(sc.share.mesh, sc.compact.rank, a.field, 0));
-  plain.setScalars(fieldStep(sc.share.mesh, sc.plain.rank, a.field, 0));
+  // One session per element layout, on one device.
+  session::RankSession compact(ctx, nullptr), plain(ctx, nullptr);
+  compact.setScene(sc.compact.rank, std::move(sc.compact.rank.positions))
+      .setScalars(fieldStep(sc.share.mesh, sc.compact.rank, a.field, 0));
+  plain.setScene(sc.plain.rank, std::move(sc.plain.rank.positions))
+      .setScalars(fieldStep(sc.share.mesh, sc.plain.rank, a.field, 0));
   sc.setup["upload_seconds_both"] = t.seconds();
-  sc.setup["device_bytes"] = {{"compacted", compact.deviceBytes()}, {"plain", plain.deviceBytes()}};
+  sc.setup["device_bytes"] = {{"compacted", compact.scene().deviceBytes()},
+                              {"plain", plain.scene().deviceBytes()}};
   auto memC = prep::memoryReport(sc.compact.rank);
   sc.setup["element_bytes"] = {{"compacted", memC.compactedElements},
                                {"plain", memC.plainElements}};
@@ -275,10 +281,10 @@ void runRenderBench(RenderArgs& a) {
   std::vector<RenderImages> images(sizes.size());
   for (size_t i = 0; i < sizes.size(); ++i)
     report["sizes"].push_back(
-        measureSize(a, sc, ctx, compact, plain, ref, sizes[i].first, sizes[i].second, images[i]));
+        measureSize(a, sc, compact, plain, ref, sizes[i].first, sizes[i].second, images[i]));
   report["vtk"] = runVtk(a, sc, mesh, report["sizes"]);
   addErrorsAndGoals(report, images);
-  pairWithVtk(a, sc, mesh, ctx, compact, report);
+  pairWithVtk(a, sc, mesh, compact, report);
   report["load_average_after"] = machineJson()["load_average"];
   printRenderTables(report);
   if (report.contains("first_image")) printFirstImage(report["first_image"]);

@@ -12,8 +12,8 @@
 #include "bench/bench_common.h"
 #include "pipeline/rank_pipeline.h"
 #include "pipeline/rank_share.h"
-#include "render/gpu_scene.h"
 #include "render/render_settings.h"
+#include "session/rank_session.h"
 #include "vk/context.h"
 
 namespace sm::app::bench {
@@ -76,6 +76,6 @@ nlohmann::json cameraJson(const scene::Camera& c);
 // Paired rounds (paired_rounds.h) of the compacted scene's equal-error runs against VTK, into
 // report.
 void pairWithVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                 const vk::Context& ctx, const render::GpuScene& compact, nlohmann::json& report);
+                 session::RankSession& compact, nlohmann::json& report);
 
 }  // namespace sm::app::bench

@@ -119,7 +119,7 @@ const nlohmann::json& sizeOfGoal(const nlohmann::json& report, const nlohmann::j
 }  // namespace
 
 void pairWithVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
-                 const vk::Context& ctx, const render::GpuScene& compact, nlohmann::json& report) {
+                 session::RankSession& compact, nlohmann::json& report) {
   if (a.pairRounds < 1 || !report["vtk"]["available"].get<bool>()) return;
   const std::vector<std::string> integrators = splitList(a.pairIntegrators);
   std::fprintf(stderr, "paired rounds: %d, shellmarch then VTK (%s) in each\n", a.pairRounds,
@@ -129,7 +129,7 @@ void pairWithVtk(const RenderArgs& a, const Scenes& sc, const std::string& mesh,
   hooks.shellmarch = [&](const nlohmann::json& g) {
     const nlohmann::json& size = sizeOfGoal(report, g);
     RenderMeasurement m = measureRender(
-        ctx, compact, settingsOfRun(a, sc, size, g["equal_error_run"].get<std::string>()), a.runs);
+        compact, settingsOfRun(a, sc, size, g["equal_error_run"].get<std::string>()), a.runs);
     return FrameTime{median(m.totalMs), median(m.cpuMs)};
   };
   hooks.vtk = [&](const std::vector<const nlohmann::json*>& goals) {

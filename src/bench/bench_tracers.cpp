@@ -20,10 +20,11 @@
 #include "compositor/deep_compositor.h"
 #include "gen/generate.h"
 #include "pipeline/rank_pipeline.h"
-#include "render/frame_defaults.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/transfer_function.h"
+#include "scene/view_defaults.h"
+#include "session/rank_session.h"
 
 namespace sm::app::bench {
 namespace {
@@ -39,8 +40,7 @@ struct TracerArgs {
 // One tracer's renderer at one size, and its frames.
 struct TracerRun {
   vk::Tracer tracer;
-  std::unique_ptr<comp::DeepCompositor> compositor;
-  std::unique_ptr<render::Renderer> renderer;
+  render::Renderer* renderer = nullptr;  // the session's
   double setupMs = 0, coldMs = 0;
   std::vector<double> roundMs;  // per round: the median of its warm frames
   std::vector<double> totalMs, traceMs, marchMs, compositeMs;
@@ -77,8 +77,8 @@ render::RenderSettings frameAt(const TracerArgs& a, const RankShare& share,
   s.transferFunction = scene::makeTransferFunction(a.colormap);
   s.transferFunction.lo = range.first;
   s.transferFunction.hi = range.second;
-  s.transferFunction.unitDistance = render::defaultUnitDistance(share.wholeBounds);
-  s.dt = render::defaultStep(share.elementSize.mean(), share.wholeBounds);
+  s.transferFunction.unitDistance = scene::defaultUnitDistance(share.wholeBounds);
+  s.dt = scene::defaultStep(share.elementSize.mean(), share.wholeBounds);
   return s;
 }
 
@@ -136,19 +136,18 @@ bool sameImage(const render::FrameResult& a, const render::FrameResult& b) {
          std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
 }
 
-nlohmann::json measureSize(const TracerArgs& a, const vk::Context& ctx,
-                           const render::GpuScene& scene, const render::RenderSettings& s,
-                           const std::vector<vk::Tracer>& tracers, uint64_t elements) {
+nlohmann::json measureSize(const TracerArgs& a, session::RankSession& session,
+                           const render::RenderSettings& s, const std::vector<vk::Tracer>& tracers,
+                           uint64_t elements) {
   std::fprintf(stderr, "bench tracers: %dx%d, %d rounds of %d warm frames per tracer\n", s.width,
                s.height, a.rounds, a.runs);
   std::vector<TracerRun> runs(tracers.size());
+  session.releaseRenderers();  // each size starts cold: its pipelines compile in its first frame
   for (size_t i = 0; i < tracers.size(); ++i) {
     TracerRun& r = runs[i];
     r.tracer = tracers[i];
     Timer setup;
-    r.compositor = std::make_unique<comp::DeepCompositor>(ctx, nullptr, s.width, s.height,
-                                                          comp::CompositorOptions{});
-    r.renderer = std::make_unique<render::Renderer>(ctx, scene, *r.compositor, nullptr, r.tracer);
+    r.renderer = &session.renderer(s.width, s.height, comp::CompositorOptions{}, r.tracer);
     r.setupMs = setup.ms();
     Timer cold;
     r.last = r.renderer->render(s);
@@ -164,7 +163,7 @@ nlohmann::json measureSize(const TracerArgs& a, const vk::Context& ctx,
     j["images_identical"] = sameImage(runs[0].last, runs[1].last);
     j["pipeline_over_query"] = pairedRatio(runs[0], runs[1]);
   }
-  j["device_bytes_in_use"] = ctx.deviceMemoryInUse();
+  j["device_bytes_in_use"] = session.context().deviceMemoryInUse();
   return j;
 }
 
@@ -206,7 +205,7 @@ RankShare loadScene(const TracerArgs& a, std::string& path) {
     share.mesh = gen::cube(*split, a.cubeN);
     gen::addAnalyticFields(share.mesh, 1);
     share.wholeBounds = share.mesh.bounds();
-    share.elementSize = render::elementSizeSum(share.mesh);
+    share.elementSize = scene::elementSizeSum(share.mesh);
     share.wholeElements = share.mesh.numCells();
     share.totalClusters = 1;
     share.clusters = {0};
@@ -225,7 +224,9 @@ void runTracerBench(const TracerArgs& a) {
   const auto sizes = parseSizes("--sizes", a.sizes);
   vk::ContextOptions vo;
   vo.device = a.device;
-  vk::Context ctx(vo);
+  // Every tracer's renderer at a size is kept, so that their rounds interleave.
+  session::RankSession session(vo, nullptr, session::SessionOptions{{}, vk::Tracer::Auto, 8});
+  const vk::Context& ctx = session.context();
   const std::vector<vk::Tracer> tracers = tracersToRun(a, ctx);
   std::string path;
   RankShare share = loadScene(a, path);
@@ -235,8 +236,8 @@ void runTracerBench(const TracerArgs& a) {
   const std::pair<double, double> range =
       r.empty || !(r.lo < r.hi) ? std::pair{0.0, 1.0} : std::pair{r.lo, r.hi};
   PreparedShare prepared = prepareShare(share, prep::PrepOptions{true}, "", 0, 1);
-  render::GpuScene scene(ctx, prepared.rank);
-  scene.setScalars(fieldStep(share.mesh, prepared.rank, a.field, 0));
+  session.setScene(prepared.rank, std::move(prepared.rank.positions))
+      .setScalars(fieldStep(share.mesh, prepared.rank, a.field, 0));
   const uint64_t elements = prepared.rank.numElements();
   nlohmann::json report;
   report["benchmark"] = "tracers";
@@ -247,7 +248,7 @@ void runTracerBench(const TracerArgs& a) {
   report["options"] = {{"field", a.field}, {"rounds", a.rounds}, {"runs", a.runs}};
   for (auto [w, h] : sizes)
     report["sizes"].push_back(
-        measureSize(a, ctx, scene, frameAt(a, share, range, w, h), tracers, elements));
+        measureSize(a, session, frameAt(a, share, range, w, h), tracers, elements));
   const std::string md = table(report);
   std::printf("shellmarch bench tracers: %s (%llu elements) on %s\n%s\n%s", path.c_str(),
               (unsigned long long)elements, ctx.deviceName().c_str(),

@@ -11,6 +11,7 @@
 #include "prep/prepare.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "session/rank_session.h"
 #include "vk/context.h"
 
 namespace sm::app::bench {
@@ -61,16 +62,17 @@ GroupFrame RankGroup::render(const render::RenderSettings& settings,
     const int r = comm.rank();
     vk::ContextOptions o;
     o.device = device_;
-    vk::Context ctx(o);
-    render::GpuScene scene(ctx, shares_->ranks[r]);
+    session::RankSession session(o, &comm, session::SessionOptions{lists});
+    const vk::Context& ctx = session.context();
+    // Copied: the group renders its ranks again for other list modes.
+    render::GpuScene& scene = session.setScene(shares_->ranks[r], shares_->ranks[r].positions);
     if (!shares_->scalars[r].empty()) scene.setScalars(shares_->scalars[r]);
-    comp::DeepCompositor compositor(ctx, &comm, settings.width, settings.height, lists);
-    render::Renderer renderer(ctx, scene, compositor);
+    session.renderer(settings.width, settings.height);  // lists allocated before the clock runs
     render::FrameResult frame;
     for (int i = 0; i <= runs; ++i) {  // frame 0 is cold (pipelines compile on first dispatch)
       comm.barrier();
       Timer t;
-      frame = renderer.render(settings, std::move(frame.pixels));
+      frame = session.render(settings, std::move(frame.pixels));
       if (i > 0) ms[r].push_back(t.ms());
     }
     fragments[r] = frame.counters.fragments;

@@ -19,12 +19,13 @@ double processCpuMs() {
 
 }  // namespace
 
-RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& scene,
-                                const render::RenderSettings& s, int runs) {
+RenderMeasurement measureRender(session::RankSession& session, const render::RenderSettings& s,
+                                int runs) {
   RenderMeasurement m;
+  session.releaseRenderers();  // a cold start: nothing built, nothing compiled
   Timer setup;
-  comp::DeepCompositor compositor(ctx, nullptr, s.width, s.height, comp::CompositorOptions{});
-  render::Renderer renderer(ctx, scene, compositor);
+  render::Renderer& renderer =
+      session.renderer(s.width, s.height, comp::CompositorOptions{}, vk::Tracer::Auto);
   m.setupMs = setup.ms();
   render::FrameResult frame;
   for (int i = 0; i <= runs; ++i) {

@@ -5,10 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/gpu_scene.h"
 #include "render/render_settings.h"
 #include "scene/image.h"
-#include "vk/context.h"
+#include "session/rank_session.h"
 
 namespace sm::app::bench {
 
@@ -25,8 +24,9 @@ struct RenderMeasurement {
   scene::Image image;  // the last frame
 };
 
-// A first (cold) frame, then `runs` warm frames of the same view.
-RenderMeasurement measureRender(const vk::Context& ctx, const render::GpuScene& scene,
+// A new compositor and renderer (setupMs), their first frame, which compiles the pipelines
+// (coldMs), then `runs` warm frames of the same view, on `session`'s scene.
+RenderMeasurement measureRender(session::RankSession& session,
                                 const render::RenderSettings& settings, int runs);
 
 // Medians, frames and samples per second; the per-frame lists too.

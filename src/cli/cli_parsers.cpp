@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/setting_error.h"
 
 namespace sm::app {
 namespace {
@@ -24,17 +25,18 @@ std::vector<double> numbers(const std::string& option, const std::string& value,
   std::vector<double> out;
   // getline drops an empty last item: "64x64x" would read as two numbers.
   if (!value.empty() && value.back() == sep)
-    throw Error(option, ": '", value, "' is not ", expected(count, sep));
+    throw SettingError(optionKey(option), "'", value, "' is not ", expected(count, sep));
   std::stringstream ss(value);
   std::string item;
   while (std::getline(ss, item, sep)) {
     char* end = nullptr;
     double d = std::strtod(item.c_str(), &end);
     if (item.empty() || *end || !std::isfinite(d))
-      throw Error(option, ": '", value, "' is not ", expected(count, sep));
+      throw SettingError(optionKey(option), "'", value, "' is not ", expected(count, sep));
     out.push_back(d);
   }
-  if (out.size() != count) throw Error(option, ": '", value, "' is not ", expected(count, sep));
+  if (out.size() != count)
+    throw SettingError(optionKey(option), "'", value, "' is not ", expected(count, sep));
   return out;
 }
 
@@ -44,7 +46,7 @@ std::pair<int, int> parseSize(const std::string& option, const std::string& valu
   auto v = numbers(option, value, 'x', 2);
   if (v[0] < 1 || v[1] < 1 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) ||
       v[0] > 16384 || v[1] > 16384)
-    throw Error(option, ": '", value, "' is not an image size WxH (1 .. 16384)");
+    throw SettingError(optionKey(option), "'", value, "' is not an image size WxH (1 .. 16384)");
   return {int(v[0]), int(v[1])};
 }
 
@@ -55,10 +57,10 @@ glm::dvec3 parseVec3(const std::string& option, const std::string& value) {
 
 std::pair<double, double> parseRange(const std::string& option, const std::string& value) {
   auto v = numbers(option, value, ',', 2);
-  if (!(v[0] < v[1])) throw Error(option, ": '", value, "' needs LO < HI");
+  if (!(v[0] < v[1])) throw SettingError(optionKey(option), "'", value, "' needs LO < HI");
   // Scalars are float on the device: a range beyond float maps every value to one end.
   if (!(std::abs(v[0]) <= 3.4e38 && std::abs(v[1]) <= 3.4e38))
-    throw Error(option, ": '", value, "' must lie within float range (+-3.4e38)");
+    throw SettingError(optionKey(option), "'", value, "' must lie within float range (+-3.4e38)");
   return {v[0], v[1]};
 }
 
@@ -67,7 +69,8 @@ scene::ClipPlane parseClipPlane(const std::string& option, const std::string& va
   if (cmp != std::string::npos) {
     const std::string axis = value.substr(0, cmp), at = value.substr(cmp + 1);
     if (axis.size() != 1 || axis.find_first_of("xyz") != 0)
-      throw Error(option, ": '", value, "' is not AXIS>VALUE or AXIS<VALUE with AXIS x, y or z");
+      throw SettingError(optionKey(option), "'", value,
+                         "' is not AXIS>VALUE or AXIS<VALUE with AXIS x, y or z");
     const int a = axis[0] - 'x';
     scene::ClipPlane p;
     p.normal = glm::dvec3(0.0);
@@ -79,9 +82,9 @@ scene::ClipPlane parseClipPlane(const std::string& option, const std::string& va
   auto v = numbers(option, value, ',', 6);
   scene::ClipPlane p{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
   if (p.normal == glm::dvec3(0.0))
-    throw Error(option, ": '", value,
-                "' has a zero normal (PX,PY,PZ,NX,NY,NZ keeps the side N points to)");
-  scene::checkClipPlanes(std::span(&p, 1), option);
+    throw SettingError(optionKey(option), "'", value,
+                       "' has a zero normal (PX,PY,PZ,NX,NY,NZ keeps the side N points to)");
+  scene::checkClipPlanes(std::span(&p, 1));
   return p;
 }
 
@@ -89,21 +92,23 @@ std::vector<scene::OpacityPoint> parseOpacityPoints(const std::string& option,
                                                     const std::string& value) {
   std::vector<scene::OpacityPoint> points;
   if (!value.empty() && value.back() == ',')  // which getline would drop
-    throw Error(option, ": '", value, "' ends in ',': VALUE:OPACITY points separated by ','");
+    throw SettingError(optionKey(option), "'", value,
+                       "' ends in ',': VALUE:OPACITY points separated by ','");
   std::stringstream ss(value);
   std::string item;
   while (std::getline(ss, item, ',')) {
     const size_t colon = item.find(':');
     if (colon == std::string::npos)
-      throw Error(option, ": '", item, "' is not VALUE:OPACITY (in '", value, "')");
+      throw SettingError(optionKey(option), "'", item, "' is not VALUE:OPACITY (in '", value, "')");
     const double v = numbers(option, item.substr(0, colon), ',', 1)[0];
     const double a = numbers(option, item.substr(colon + 1), ',', 1)[0];
     points.push_back({v, a});
   }
-  if (points.empty()) throw Error(option, ": '", value, "' has no VALUE:OPACITY points");
+  if (points.empty())
+    throw SettingError(optionKey(option), "'", value, "' has no VALUE:OPACITY points");
   scene::TransferFunction check;
   check.table.resize(2);
-  scene::setOpacityPoints(check, points, option);  // the same checks as when applied
+  scene::setOpacityPoints(check, points);  // the same checks as when applied
   return points;
 }
 
@@ -131,11 +136,13 @@ std::string formatClipPlane(const scene::ClipPlane& plane) {
 glm::vec4 parseNanColor(const std::string& option, const std::string& value) {
   const size_t count = size_t(std::count(value.begin(), value.end(), ',')) + 1;
   if (count != 3 && count != 4)
-    throw Error(option, ": '", value, "' is not R,G,B or R,G,B,OPACITY (numbers in [0, 1])");
+    throw SettingError(optionKey(option), "'", value,
+                       "' is not R,G,B or R,G,B,OPACITY (numbers in [0, 1])");
   std::vector<double> v = numbers(option, value, ',', count);
   if (count == 3) v.push_back(1.0);
   for (double c : v)
-    if (!(c >= 0.0 && c <= 1.0)) throw Error(option, ": '", value, "' has ", c, ", outside [0, 1]");
+    if (!(c >= 0.0 && c <= 1.0))
+      throw SettingError(optionKey(option), "'", value, "' has ", c, ", outside [0, 1]");
   return glm::vec4(float(v[0]), float(v[1]), float(v[2]), float(v[3]));
 }
 
@@ -144,8 +151,8 @@ render::Shading parseShading(const std::string& option, const std::string& value
   // Bounded above too: the coefficients scale colours, and huge ones overflow them to infinity.
   const auto coefficient = [](double c) { return c >= 0 && c <= 100; };
   if (!(coefficient(v[0]) && coefficient(v[1]) && coefficient(v[2]) && v[3] >= 1 && v[3] <= 1024))
-    throw Error(option, ": '", value,
-                "' needs AMBIENT,DIFFUSE,SPECULAR in [0, 100] and a SHININESS in [1, 1024]");
+    throw SettingError(optionKey(option), "'", value,
+                       "' needs AMBIENT,DIFFUSE,SPECULAR in [0, 100] and a SHININESS in [1, 1024]");
   render::Shading s;
   s.enabled = true;
   s.ambient = v[0];
@@ -157,7 +164,7 @@ render::Shading parseShading(const std::string& option, const std::string& value
 
 double parsePositive(const std::string& option, const std::string& value) {
   double v = numbers(option, value, ',', 1)[0];
-  if (!(v > 0)) throw Error(option, ": ", value, " must be positive");
+  if (!(v > 0)) throw SettingError(optionKey(option), value, " must be positive");
   return v;
 }
 
@@ -167,7 +174,7 @@ int64_t parseCount(const std::string& option, const std::string& value, const ch
   errno = 0;
   const long long n = std::strtoll(value.c_str(), &end, 10);
   if (value.empty() || *end || errno == ERANGE || n < 1 || n > hi)
-    throw Error(option, ": '", value, "' is not a ", what, " (1 .. ", hiText, ")");
+    throw SettingError(optionKey(option), "'", value, "' is not a ", what, " (1 .. ", hiText, ")");
   return n;
 }
 
@@ -175,7 +182,7 @@ comp::ListMode parseListMode(const std::string& value) {
   if (value == "two-pass") return comp::ListMode::TwoPass;
   if (value == "drop") return comp::ListMode::FixedDrop;
   if (value == "merge") return comp::ListMode::FixedMerge;
-  throw Error("--lists: '", value, "' (use two-pass, drop or merge)");
+  throw SettingError("lists", "'", value, "' (use two-pass, drop or merge)");
 }
 
 vk::Tracer parseTracer(const std::string& value) {
@@ -189,27 +196,27 @@ vk::Tracer parseTracer(const std::string& value) {
 comp::Encoding parseEncoding(const std::string& value) {
   if (value == "float") return comp::Encoding::Float;
   if (value == "rgba8") return comp::Encoding::Rgba8;
-  throw Error("--encoding: '", value, "' (use float or rgba8)");
+  throw SettingError("encoding", "'", value, "' (use float or rgba8)");
 }
 
 comp::PixelOwnership parsePixelOwnership(const std::string& value) {
   try {
     return comp::parseOwnership(value);
   } catch (const std::invalid_argument& e) {
-    throw Error("--pixel-ownership: ", e.what());
+    throw SettingError("pixel-ownership", e.what());
   }
 }
 
 comp::CompositeMethod parseCompositeMethod(const std::string& value) {
   if (value == "deep") return comp::CompositeMethod::Deep;
   if (value == "single") return comp::CompositeMethod::SingleFragment;
-  throw Error("--composite: '", value, "' (use deep or single)");
+  throw SettingError("composite", "'", value, "' (use deep or single)");
 }
 
 render::Integration parseIntegration(const std::string& value) {
   if (value == "sampled") return render::Integration::Sampled;
   if (value == "exact") return render::Integration::ElementExact;
-  throw Error("--integration: '", value, "' (use sampled or exact)");
+  throw SettingError("integration", "'", value, "' (use sampled or exact)");
 }
 
 }  // namespace sm::app

@@ -10,6 +10,7 @@
 #include "cli/cli_parsers.h"
 #include "common/check.h"
 #include "common/error.h"
+#include "common/setting_error.h"
 #include "scene/camera_file.h"
 
 namespace sm::app {
@@ -184,7 +185,7 @@ void applyCameraOptions(SceneOptionText& raw, RenderJob& job) {
   if (!scale.empty()) {
     job.parallelScale = parsePositive("--parallel-scale", scale);
     if (!(*job.parallelScale < 1e30))
-      throw Error("--parallel-scale: ", scale, " is beyond the renderer's range (1e30)");
+      throw SettingError("parallel-scale", scale, " is beyond the renderer's range (1e30)");
     job.parallel = true;
   }
 }
@@ -220,7 +221,7 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   job.compact = !raw.plain;
   job.clipPlanes.clear();
   for (const std::string& c : raw.clip) job.clipPlanes.push_back(parseClipPlane("--clip", c));
-  scene::checkClipPlanes(job.clipPlanes, "--clip");
+  scene::checkClipPlanes(job.clipPlanes);
   // Options that another one makes meaningless are refused rather than silently ignored.
   if (!get("--view").empty()) {
     if (job.eye)
@@ -232,17 +233,18 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
   }
   applyCameraOptions(raw, job);
   if (!(job.fovy > 0 && job.fovy < 180))
-    throw Error("--fovy: ", job.fovy, " degrees is not in (0, 180)");
+    throw SettingError("fovy", job.fovy, " degrees is not in (0, 180)");
   // The device computes in float: a camera beyond its range would see nothing, silently.
   for (const auto& [option, v] : {std::pair{"--eye", job.eye}, std::pair{"--at", job.at}})
     if (v && !(glm::all(glm::lessThanEqual(glm::abs(*v), glm::dvec3(1e30)))))
-      throw Error(option, ": components beyond 1e30 in size are out of the renderer's range");
+      throw SettingError(optionKey(option),
+                         "components beyond 1e30 in size are out of the renderer's range");
   if (!get("--k").empty()) {
     const int64_t k = parseCount("--k", get("--k"), "slot count", 65535, "65535");
     if (job.lists.mode == comp::ListMode::TwoPass)
-      throw Error(
-          "--k: slots are for fixed-length lists (--lists drop or merge); two-pass lists "
-          "hold every fragment");
+      throw SettingError("k",
+                         "slots are for fixed-length lists (--lists drop or merge); two-pass lists "
+                         "hold every fragment");
     job.lists.fixedK = uint32_t(k);
   }
   if (!get("--clusters").empty() && !job.share.read.clusterArray.empty())
@@ -253,13 +255,13 @@ void applySceneOptions(SceneOptionText& raw, RenderJob& job) {
     job.share.metisClusters =
         int(parseCount("--clusters", get("--clusters"), "cluster count", 1 << 30, "2^30"));
   if (!(job.earlyTermination > 0 && job.earlyTermination <= 1))
-    throw Error("--early-termination: ", job.earlyTermination,
-                " is not an opacity in (0, 1] (1: rays stop only when opaque)");
+    throw SettingError("early-termination", job.earlyTermination,
+                       " is not an opacity in (0, 1] (1: rays stop only when opaque)");
   if (!(job.opacityScale >= 0 && std::isfinite(job.opacityScale)))
-    throw Error("--opacity-scale: ", job.opacityScale, " must be finite and not negative");
+    throw SettingError("opacity-scale", job.opacityScale, " must be finite and not negative");
   for (int c = 0; c < 3; ++c)
     if (!(job.background[c] >= 0 && job.background[c] <= 1))
-      throw Error("--background: each component must be in [0, 1], not ", job.background[c]);
+      throw SettingError("background", "each component must be in [0, 1], not ", job.background[c]);
 }
 
 }  // namespace sm::app

@@ -1,12 +1,15 @@
-// From the API's per-frame settings to the renderer's: defaults that depend on the whole mesh
-// (camera, sample distance, unit distance), validation with messages in the API's terms, and a
-// digest for checking that every rank asked for the same frame.
+// From the API's per-frame settings to the session layer's frame request (session/frame_request.h,
+// which makes the renderer's settings as for every front end): what only the API has is checked
+// here (its strings, a given range, the legend's colour), and a digest checks that every rank asked
+// for the same frame. Errors name the API's fields: "render: sampleDistance: ...".
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <string>
 
-#include "mesh/unstructured_mesh.h"
-#include "render/render_settings.h"
+#include "mesh/bounds.h"
+#include "session/frame_request.h"
 #include "shellmarch/insitu.h"
 
 namespace sm::insitu {
@@ -18,10 +21,12 @@ struct MeshFrame {
   uint64_t elements = 0;  // all ranks
 };
 
-// Everything of the frame except the transfer function's range (which may need a reduction).
-// Throws sm::Error naming the setting at fault.
-render::RenderSettings toRenderSettings(const shellmarch::insitu::RenderSettings& s,
-                                        const MeshFrame& frame);
+session::FrameRequest frameRequest(const shellmarch::insitu::RenderSettings& s);
+session::DataExtent dataExtent(const MeshFrame& frame);
+
+// Runs f; a SettingError it throws becomes an Error naming the API's field, "render: <field>:
+// <detail>".
+void inApiTerms(const std::function<void()>& f);
 
 // Digest of the settings that must match on every rank.
 uint64_t settingsDigest(const shellmarch::insitu::RenderSettings& s);

@@ -16,12 +16,12 @@
 #include "group.h"
 #include "mesh_input.h"
 #include "prep/prepare.h"
-#include "render/frame_defaults.h"
-#include "render/renderer.h"
 #include "scene/image.h"
 #include "scene/legend.h"
+#include "scene/view_defaults.h"
+#include "session/frame_request.h"
+#include "session/rank_session.h"
 #include "shellmarch/insitu.h"
-#include "vk/context.h"
 
 namespace shellmarch::insitu {
 
@@ -37,7 +37,7 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
       o.device = options.device;
       o.validation = options.validation;
       o.tracer = sm::vk::parseTracer("tracer", options.tracer);
-      ctx = std::make_unique<sm::vk::Context>(o);
+      session = std::make_unique<sm::session::RankSession>(o, sm::comm::withPeers(group.comm()));
     });
   }
 
@@ -46,15 +46,11 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   void render(const RenderSettings& settings, Image& into);
   MeshFrame agreeOnFrame(const sm::mesh::UnstructuredMesh& m);
   void upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t> globalIds);
-  void ensureRenderer(int width, int height);
   void releaseMesh();
 
-  // Declaration order is destruction order reversed: the renderer goes before what it uses.
+  // Declaration order is destruction order reversed: the session goes before the group.
   Group group;
-  std::unique_ptr<sm::vk::Context> ctx;
-  std::unique_ptr<sm::render::GpuScene> scene;
-  std::unique_ptr<sm::comp::DeepCompositor> compositor;
-  std::unique_ptr<sm::render::Renderer> renderer;
+  std::unique_ptr<sm::session::RankSession> session;
   std::vector<glm::vec4> pixels;  // the composited image's storage, handed from frame to frame
   FieldStore fields;
   sm::border::CellAverager cellFields;
@@ -64,18 +60,11 @@ struct __attribute__((visibility("hidden"))) Renderer::Impl {
   // mesh's elements came from (a polyhedron's value goes to each of its tetrahedra).
   uint64_t callerElements = 0;
   std::vector<uint32_t> elementOrigin;
-  uint64_t retiredBuilds = 0, retiredUploads = 0;  // of scenes replaced by a later setMesh
   double prepareSeconds = 0, frameMs = 0;
 };
 
 void Renderer::Impl::releaseMesh() {
-  renderer.reset();
-  compositor.reset();
-  if (scene) {
-    retiredBuilds += scene->geometryBuilds();
-    retiredUploads += scene->scalarUploads();
-  }
-  scene.reset();
+  session->releaseScene();
   fields = FieldStore();
   cellFields = sm::border::CellAverager();
   callerElements = 0;
@@ -91,7 +80,7 @@ MeshFrame Renderer::Impl::agreeOnFrame(const sm::mesh::UnstructuredMesh& m) {
     f.whole.hi[a] = sm::comm::maxOf(group.comm(), local.empty ? -inf : local.hi[a]);
   }
   f.whole.empty = !(f.whole.lo.x <= f.whole.hi.x);
-  const sm::render::ElementSizeSum sizes = sm::render::elementSizeSum(m);
+  const sm::scene::ElementSizeSum sizes = sm::scene::elementSizeSum(m);
   f.elements = sm::comm::sumOf(group.comm(), sizes.count);
   f.meanElementSize =
       f.elements ? sm::comm::sumOf(group.comm(), sizes.sum) / double(f.elements) : 0.0;
@@ -106,7 +95,7 @@ void Renderer::Impl::upload(sm::mesh::UnstructuredMesh& m, std::vector<uint64_t>
   sm::prep::PreparedRank prepared =
       sm::prep::prepareRank(m, sm::prep::makeGlobalFrame(frame.whole), sm::prep::PrepOptions{})
           .rank;
-  scene = std::make_unique<sm::render::GpuScene>(*ctx, prepared);
+  session->setScene(prepared, std::move(prepared.positions));
   localElements = prepared.numElements();
   // The device holds the geometry now; the host keeps only the vertex map for the fields.
   sm::prep::PreparedRank vertexMap;
@@ -141,7 +130,7 @@ void Renderer::Impl::setMesh(const MeshView& view) {
 
 void Renderer::Impl::setCellField(const std::string& name, std::span<const float> values) {
   group.agree([&] {
-    if (!scene) throw Error("setCellField: no mesh (call setMesh first)");
+    if (!session->hasScene()) throw Error("setCellField: no mesh (call setMesh first)");
     if (name.empty()) throw Error("setCellField: the field needs a name");
     if (values.size() != callerElements)
       throw Error(sm::concat("setCellField '", name, "': ", values.size(), " values for ",
@@ -164,41 +153,39 @@ void Renderer::Impl::setCellField(const std::string& name, std::span<const float
   group.agree([&] { fields.set(name, atVertices); });
 }
 
-void Renderer::Impl::ensureRenderer(int width, int height) {
-  if (compositor && compositor->width() == width && compositor->height() == height) return;
-  renderer.reset();
-  compositor = std::make_unique<sm::comp::DeepCompositor>(
-      *ctx, sm::comm::withPeers(group.comm()), width, height, sm::comp::CompositorOptions{});
-  renderer = std::make_unique<sm::render::Renderer>(*ctx, *scene, *compositor);
-}
-
 void Renderer::Impl::render(const RenderSettings& s, Image& into) {
   sm::Timer timer;
-  sm::render::RenderSettings rs;
+  sm::session::FrameRequest request;
   sm::insitu::FieldRange range;
   group.agree([&] {
-    if (!scene) throw Error("render: no mesh (setMesh was not called or failed)");
-    rs = sm::insitu::toRenderSettings(s, frame);
-    range = fields.prepare(s.field, *scene);
-    ensureRenderer(s.width, s.height);
+    if (!session->hasScene()) throw Error("render: no mesh (setMesh was not called or failed)");
+    sm::insitu::inApiTerms([&] {
+      request = sm::insitu::frameRequest(s);
+      sm::session::checkRequest(request);
+    });
+    range = fields.prepare(s.field, session->scene());
   });
   if (!sm::comm::allSame(group.comm(), sm::insitu::settingsDigest(s)))
     throw Error("render: the settings differ between ranks; every rank must pass the same");
   double lo = s.range ? (*s.range)[0] : sm::comm::minOf(group.comm(), range.lo);
   double hi = s.range ? (*s.range)[1] : sm::comm::maxOf(group.comm(), range.hi);
   if (!(lo <= hi)) lo = 0, hi = 1;  // no finite value anywhere: any range renders transparent
-  rs.transferFunction.lo = lo;
-  rs.transferFunction.hi = hi;
-  // Every rank has the same range: they refuse it alike.
-  sm::scene::checkScale(rs.transferFunction, "render: logScale");
+  // Every rank has the same request, mesh frame and range: they refuse it alike.
+  sm::render::RenderSettings rs;
+  const std::string field = s.field.empty() ? fields.firstName() : s.field;
+  group.agree([&] {
+    sm::insitu::inApiTerms([&] {
+      rs = sm::session::makeRenderSettings(request, sm::insitu::dataExtent(frame), field, {lo, hi});
+    });
+    session->renderer(s.width, s.height);  // the compositor's lists, allocated here
+  });
   sm::render::FrameResult result;
-  group.runOrAbort([&] { result = renderer->render(rs, std::move(pixels)); });
+  group.runOrAbort([&] { result = session->render(rs, std::move(pixels)); });
   if (group.rank() == 0 && s.legend) {  // titled as the field was asked for
     sm::scene::Image img(s.width, s.height);
     img.pixels = std::move(result.pixels);
     const std::array<float, 3>& b = s.legendBackground;
-    sm::scene::drawLegend(img, rs.transferFunction, s.field.empty() ? fields.firstName() : s.field,
-                          glm::vec3(b[0], b[1], b[2]));
+    sm::scene::drawLegend(img, rs.transferFunction, field, glm::vec3(b[0], b[1], b[2]));
     result.pixels = std::move(img.pixels);
   }
   frameMs = timer.seconds() * 1e3;
@@ -270,19 +257,18 @@ void Renderer::render(const RenderSettings& settings, Image& into) {
 Stats Renderer::stats() const {
   const Impl& d = *impl_;
   Stats s;
-  s.deviceName = d.ctx->deviceName();
-  s.tracer = sm::vk::tracerName(d.ctx->tracer());
-  s.geometryBuilds = d.retiredBuilds;
-  s.scalarUploads = d.retiredUploads;
-  if (d.scene) {
-    s.vertices = d.scene->numVertices();
-    s.shellTriangles = d.scene->shellTriangles();
+  const sm::vk::Context& ctx = d.session->context();
+  s.deviceName = ctx.deviceName();
+  s.tracer = sm::vk::tracerName(ctx.tracer());
+  s.geometryBuilds = d.session->geometryBuilds();
+  s.scalarUploads = d.session->scalarUploads();
+  if (d.session->hasScene()) {
+    s.vertices = d.session->scene().numVertices();
+    s.shellTriangles = d.session->scene().shellTriangles();
     s.elements = d.localElements;
-    s.geometryBuilds += d.scene->geometryBuilds();
-    s.scalarUploads += d.scene->scalarUploads();
   }
-  s.validationErrors = d.ctx->validationErrors();
-  s.validationWarnings = d.ctx->validationWarnings();
+  s.validationErrors = ctx.validationErrors();
+  s.validationWarnings = ctx.validationWarnings();
   s.prepareSeconds = d.prepareSeconds;
   s.frameMs = d.frameMs;
   return s;

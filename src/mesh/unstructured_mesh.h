@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/bounds.h"
 #include "mesh/cell_type.h"
 
 namespace sm::mesh {
@@ -35,16 +36,6 @@ struct Range {
   bool empty = true;
   void extend(double v);
   void extend(const Range& r);
-};
-
-struct Bounds {
-  glm::dvec3 lo{0.0}, hi{0.0};
-  bool empty = true;
-  void extend(const glm::dvec3& p);
-  void extend(const Bounds& b);
-  glm::dvec3 center() const { return (lo + hi) * 0.5; }
-  glm::dvec3 extent() const { return hi - lo; }
-  double diagonal() const;
 };
 
 // Cells a reader met but does not render; they are counted and reported, never silently dropped.

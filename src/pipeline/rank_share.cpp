@@ -267,7 +267,7 @@ RankShare loadRankShare(const std::string& path, const ShareOptions& o, comm::Co
   RankShare s =
       pieces ? readPieces(path, reading, cellData, comm) : readWhole(path, reading, cellData, comm);
   s.wholeBounds = globalBounds(s.mesh.bounds(), comm);
-  render::ElementSizeSum local = render::elementSizeSum(s.mesh);
+  scene::ElementSizeSum local = scene::elementSizeSum(s.mesh);
   s.elementSize.sum = comm::sumOf(comm, local.sum);
   s.elementSize.count = comm::sumOf(comm, local.count);
   s.wholeElements = s.elementSize.count;

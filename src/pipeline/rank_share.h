@@ -11,7 +11,7 @@
 #include "comm/reductions.h"
 #include "io/mesh_io.h"
 #include "mesh/unstructured_mesh.h"
-#include "render/frame_defaults.h"
+#include "scene/view_defaults.h"
 
 namespace sm::app {
 
@@ -46,8 +46,8 @@ struct RankShare {
   mesh::UnstructuredMesh mesh;  // this rank's clusters, merged
   std::vector<int> clusters;    // cluster ids this rank renders
   int totalClusters = 0;
-  mesh::Bounds wholeBounds;            // of the whole data set (all ranks)
-  render::ElementSizeSum elementSize;  // whole data set
+  mesh::Bounds wholeBounds;           // of the whole data set (all ranks)
+  scene::ElementSizeSum elementSize;  // whole data set
   uint64_t wholeElements = 0;
   std::optional<StepStream> stream;  // set when the mesh holds one step per field
 };

@@ -27,11 +27,12 @@
 #include "pipeline/step_loads.h"
 #include "pipeline/step_source.h"
 #include "pipeline/time_selection.h"
-#include "render/frame_defaults.h"
 #include "render/preintegration.h"
 #include "render/renderer.h"
+#include "render/step_limits.h"
 #include "scene/image.h"
 #include "scene/legend.h"
+#include "session/rank_session.h"
 #include "vk/context.h"
 #include "vk/vk_error.h"
 
@@ -267,7 +268,7 @@ void checkOutputs(const RenderJob& job) {
 }  // namespace
 
 void runRender(const RenderJob& job, comm::Communicator& comm) {
-  checkImageSize(job);
+  session::checkRequest(frameRequest(job));
   checkOutputs(job);
   if (job.repeat < 1) throw Error("--repeat: must be at least 1, not ", job.repeat);
   if (job.orbit < 0) throw Error("--orbit: must be at least 1, not ", job.orbit);
@@ -307,22 +308,23 @@ void runRender(const RenderJob& job, comm::Communicator& comm) {
       prepareShare(share, prep::PrepOptions{job.compact}, job.cacheDir, comm.rank(), comm.size());
   const double prepSeconds = prepTimer.seconds();
   const uint64_t peakAfterPrepare = peakResidentBytes();  // before the device holds a copy
-  vk::Context ctx(contextOptions(job));
+  session::RankSession session(contextOptions(job), comm::withPeers(comm),
+                               session::SessionOptions{job.lists});
+  const vk::Context& ctx = session.context();
   // Out of device memory becomes a message that says what would fit, not a Vulkan call's name.
-  std::unique_ptr<render::GpuScene> scene;
   Timer uploadTimer;
   try {
-    scene = std::make_unique<render::GpuScene>(ctx, prepared.rank);
+    session.setScene(prepared.rank, std::move(prepared.rank.positions));
   } catch (const vk::BufferLimitError& e) {
     throw Error(e.what());  // names the buffer, the device's limit and how many more ranks
   } catch (const vk::DeviceMemoryError& e) {
     throw Error(sceneMemoryAdvice(e, ctx, prepared.rank, comm.size()));
   }
-  render::GpuScene& gpu = *scene;
+  render::GpuScene& gpu = session.scene();
   const double uploadSeconds = uploadTimer.seconds();  // buffers and acceleration structures
   try {
-    comp::DeepCompositor compositor(ctx, comm::withPeers(comm), job.width, job.height, job.lists);
-    render::Renderer renderer(ctx, gpu, compositor);
+    render::Renderer& renderer = session.renderer(job.width, job.height);
+    comp::DeepCompositor& compositor = session.compositor(job.width, job.height);
 
     StatsReport report(job, comm);
     report.setSetup(loadSeconds, prepSeconds, prepared.fromCache, prepared.rank, gpu,

@@ -12,12 +12,10 @@
 #include "pipeline/rank_share.h"
 #include "pipeline/render_options.h"
 #include "render/render_settings.h"
+#include "session/frame_request.h"
 #include "vk/context.h"
 
 namespace sm::app {
-
-// Throws naming --size when the image size is unusable.
-void checkImageSize(const RenderJob& job);
 
 // The job's field, or rank 0's first point field when none was asked for (collective).
 std::string resolveField(const RenderJob& job, const mesh::UnstructuredMesh& m,
@@ -45,13 +43,13 @@ std::string defaultCellField(const RenderJob& job, comm::Communicator& comm);
 uint64_t agreedStepCount(const std::string& path, const std::string& field, uint64_t mine,
                          bool hasPoints, comm::Communicator& comm);
 
-// --eye/--at/--up/--fovy, or the --view preset framing the whole data set.
-scene::Camera makeCamera(const RenderJob& job, const mesh::Bounds& whole);
+// The job's frame in the session layer's terms, and the data set it frames.
+session::FrameRequest frameRequest(const RenderJob& job);
+session::DataExtent dataExtent(const RenderJob& job, const RankShare& share);
 
-// Settings for the job's first frame: camera, transfer function over `range` (of `field`, the one
-// shown, for messages), sample step; throws naming the option when a value is unusable.
-// --nan-color over the colour map's own NaN colour (the viewer keeps it across maps).
-void applyNanColor(const RenderJob& job, scene::TransferFunction& tf);
+// Settings for the job's first frame (session::makeRenderSettings): camera, transfer function
+// over `range` of `field` (the one shown, for messages), sample step; throws SettingError naming
+// the option when a value is unusable.
 render::RenderSettings makeSettings(const RenderJob& job, const RankShare& share,
                                     const std::string& field, std::pair<double, double> range);
 

@@ -20,7 +20,7 @@ double MemoryReport::compactionSavings() const {
 MemoryReport memoryReport(const PreparedRank& r, uint64_t scalarSteps) {
   MemoryReport m;
   m.compact = r.compact;
-  m.vertices = r.positions.size() * sizeof(float);
+  m.vertices = 3 * r.numVertices() * sizeof(float);  // the positions, which a GpuScene may hold
   m.vertexMap = r.vertexSource.size() * sizeof(uint32_t);
   for (uint32_t t = 0; t < mesh::kNumCellTypes; ++t) {
     m.connectivity += r.neighbors[t].size() * sizeof(uint32_t);

@@ -9,8 +9,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/bounds.h"
 #include "mesh/cell_type.h"
-#include "mesh/unstructured_mesh.h"
 
 namespace sm::prep {
 

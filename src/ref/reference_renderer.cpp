@@ -138,7 +138,7 @@ void ReferenceRenderer::checkInputs(std::span<const float> values,
                 mesh_.numPoints(), " points");
   if (settings.mode == RenderMode::Grid && !(settings.dt > 0.0 && std::isfinite(settings.dt)))
     throw Error("reference renderer: sample spacing dt = ", settings.dt, " is not positive");
-  scene::checkClipPlanes(settings.clipPlanes, "reference renderer");
+  scene::checkClipPlanes(settings.clipPlanes);
   if (!(settings.tolerance > 0.0))
     throw Error("reference renderer: tolerance ", settings.tolerance, " is not positive");
   if (!(settings.earlyTermination > 0.0 && settings.earlyTermination <= 1.0))

@@ -14,17 +14,18 @@ constexpr VkBufferUsageFlags kAsInput =
     VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
 }
 
-std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r) {
+std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r,
+                                           std::span<const float> positions) {
   // From the shell's own vertices: a point no element uses may lie anywhere (up to FLT_MAX).
   float scale = 0.0f;
   for (uint32_t v : r.shellIndices)
-    for (int k = 0; k < 3; ++k) scale = std::max(scale, std::abs(r.positions[3 * size_t(v) + k]));
+    for (int k = 0; k < 3; ++k) scale = std::max(scale, std::abs(positions[3 * size_t(v) + k]));
   const float absolutePad = std::max(scale, 1e-30f) * 1e-6f;
   std::vector<VkAabbPositionsKHR> boxes(r.numShellTriangles());
   for (size_t t = 0; t < boxes.size(); ++t) {
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (int k = 0; k < 3; ++k) {
-      const float* p = &r.positions[3 * size_t(r.shellIndices[3 * t + k])];
+      const float* p = &positions[3 * size_t(r.shellIndices[3 * t + k])];
       lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
       hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
     }
@@ -36,7 +37,8 @@ std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r) {
   return boxes;
 }
 
-GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeometry shell)
+GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r,
+                   std::vector<float> positions, ShellGeometry shell)
     : ctx_(ctx),
       shell_(shell),
       compact_(r.compact),
@@ -44,13 +46,15 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
       numVertices_(r.numVertices()),
       shellTriangles_(r.numShellTriangles()),
       origin_(r.frame.origin),
-      scale_(r.frame.scale) {
+      scale_(r.frame.scale),
+      positions_(std::move(positions)) {
+  if (positions_.size() != 3 * numVertices_)
+    throw Error("positions for ", positions_.size() / 3, " vertices, the rank has ", numVertices_);
   // The shell's vertices bound the elements (a union of elements reaches its extremes on its
   // boundary); points no element uses, however far, are not part of what is drawn.
   for (uint32_t v : r.shellIndices)
-    bounds_.extend(glm::dvec3(r.positions[3 * uint64_t(v)], r.positions[3 * uint64_t(v) + 1],
-                              r.positions[3 * uint64_t(v) + 2]));
-  hostPositions_ = r.positions;
+    bounds_.extend(glm::dvec3(positions_[3 * uint64_t(v)], positions_[3 * uint64_t(v) + 1],
+                              positions_[3 * uint64_t(v) + 2]));
   vertices_[0] = vk::Buffer(ctx, std::max<uint64_t>(numVertices_, 1) * sizeof(glm::vec4),
                             vk::kStorageUsage, vk::MemoryUse::Device, "vertices");
   uploadVertices(vertices_[0], std::vector<float>(numVertices_, 0.0f));
@@ -73,13 +77,12 @@ GpuScene::GpuScene(const vk::Context& ctx, const prep::PreparedRank& r, ShellGeo
                   " acceleration structures hold at most ", limit, " (use more ranks)");
     if (shell == ShellGeometry::Triangles) {
       // The BLAS copies the triangles it is built from: the positions are input only.
-      vk::Buffer positions =
-          vk::makeBuffer<float>(ctx, r.positions, "positions (BLAS input)", kAsInput);
-      blas_ = vk::AccelerationStructure::buildTriangles(ctx, positions, uint32_t(numVertices_),
+      vk::Buffer input = vk::makeBuffer<float>(ctx, positions_, "positions (BLAS input)", kAsInput);
+      blas_ = vk::AccelerationStructure::buildTriangles(ctx, input, uint32_t(numVertices_),
                                                         shellIndices_, uint32_t(shellTriangles_),
                                                         true, "shell BLAS (triangles)");
     } else {
-      auto boxes = shellBoxes(r);
+      auto boxes = shellBoxes(r, positions_);
       vk::Buffer input = vk::makeBuffer<VkAabbPositionsKHR>(ctx, boxes, "shell boxes", kAsInput);
       blas_ = vk::AccelerationStructure::buildBoxes(ctx, input, uint32_t(boxes.size()), true,
                                                     "shell BLAS (boxes)");
@@ -101,7 +104,9 @@ uint64_t GpuScene::requiredBytes(const vk::Context& ctx, const prep::PreparedRan
   const uint64_t tris = r.numShellTriangles();
   if (tris > 0 && tris <= 0xFFFFFFFFull) {
     const bool boxes = shell == ShellGeometry::Boxes;
-    b += boxes ? tris * sizeof(VkAabbPositionsKHR) : bytes(r.positions);
+    // Triangles: the positions are copied to the device as the BLAS's input.
+    b += boxes ? tris * sizeof(VkAabbPositionsKHR)
+               : std::max<uint64_t>(3 * r.numVertices() * sizeof(float), 16);
     b += vk::AccelerationStructure::bottomLevelBuildBytes(ctx, boxes, uint32_t(tris),
                                                           uint32_t(r.numVertices()));
   }
@@ -113,8 +118,7 @@ uint64_t GpuScene::requiredBytes(const vk::Context& ctx, const prep::PreparedRan
 void GpuScene::uploadVertices(vk::Buffer& buffer, std::span<const float> scalars) const {
   std::vector<glm::vec4> v(std::max<uint64_t>(numVertices_, 1), glm::vec4(0.0f));
   for (uint64_t i = 0; i < numVertices_; ++i)
-    v[i] = glm::vec4(hostPositions_[3 * i], hostPositions_[3 * i + 1], hostPositions_[3 * i + 2],
-                     scalars[i]);
+    v[i] = glm::vec4(positions_[3 * i], positions_[3 * i + 1], positions_[3 * i + 2], scalars[i]);
   buffer.upload(v.data(), v.size() * sizeof(glm::vec4));
 }
 

@@ -19,7 +19,8 @@ namespace sm::render {
 // exactly along a triangle's plane or edge from being missed by the device's float box test; the
 // exact test then decides. It scales with the shell alone: points no element uses, however far,
 // leave the boxes tight.
-std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r);
+std::vector<VkAabbPositionsKHR> shellBoxes(const prep::PreparedRank& r,
+                                           std::span<const float> positions);
 
 // How the shell BLAS holds the shell. Boxes: one padded box per shell triangle, every candidate
 // decided by the exact crossing predicates the marcher uses (exact everywhere, the default).
@@ -29,7 +30,11 @@ enum class ShellGeometry { Boxes, Triangles };
 
 class GpuScene {
  public:
-  GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank,
+  // `positions`: the rank's (rank.positions, which the rest of `rank` indexes). The scene keeps
+  // them on the host to interleave each time step's scalars with: callers with no further use for
+  // them move them in (`GpuScene(ctx, rank, std::move(rank.positions))`), so that the host holds
+  // one copy, not two.
+  GpuScene(const vk::Context& ctx, const prep::PreparedRank& rank, std::vector<float> positions,
            ShellGeometry shell = ShellGeometry::Boxes);
   // Device memory a scene of `rank` needs while it is built (buffers, shell boxes, BLAS with its
   // build scratch), allocating nothing: what an out-of-memory message compares with the device.
@@ -77,7 +82,7 @@ class GpuScene {
   mesh::Bounds bounds_;
   void uploadVertices(vk::Buffer& buffer, std::span<const float> scalars) const;
 
-  std::vector<float> hostPositions_;  // xyz per vertex, to interleave each step's scalars with
+  std::vector<float> positions_;  // xyz per vertex, to interleave each step's scalars with
   vk::Buffer shellIndices_, shellRefs_, shellOther_, shellAdjacency_;
   vk::Buffer vertices_[2];  // xyz + scalar per vertex; frames read vertices_[front_]
   int front_ = 0;

@@ -25,6 +25,9 @@ struct Shading {
   bool enabled = false;
   double ambient = 0.3, diffuse = 0.7, specular = 0.2, shininess = 20.0;
 };
+// Throws SettingError "shading" for enabled shading with a negative coefficient or a shininess
+// outside [1, 1024].
+void checkShading(const Shading& s);
 
 struct RenderSettings {
   int width = 512, height = 512;

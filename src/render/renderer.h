@@ -1,17 +1,18 @@
-// The renderer: a thin facade over the pass objects. One frame = traversal, marching, compositing.
+// The renderer: a thin facade. One frame = its parameters (frame_params.h), the list mode's passes
+// (list_modes.h) over the frame's buffers (frame_resources.h), then compositing.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
-#include <span>
 #include <vector>
 
 #include <glm/vec4.hpp>
 
 #include "compositor/deep_compositor.h"
+#include "render/frame_resources.h"
+#include "render/frame_result.h"
 #include "render/gpu_scene.h"
-#include "render/preintegration.h"
+#include "render/list_modes.h"
 #include "render/render_passes.h"
 #include "render/render_settings.h"
 
@@ -21,27 +22,6 @@ namespace sm::render {
 struct WorldRay {
   glm::dvec3 origin;
   glm::dvec3 direction;  // unit length
-};
-
-struct FrameTimings {
-  // Stage-split two-pass frames time traversal (both passes) and marching apart. Where the two
-  // are fused (`fused`: cached two-pass lists, fixed lists) traversalMs is the pass that traces
-  // and marches, and marchMs the cached store pass (0 for fixed lists).
-  double traversalMs = 0;
-  double scanMs = 0;  // prefix sum over the counts, and the host round trip for the total
-  double marchMs = 0;
-  bool fused = false;
-  double compositeMs = 0;
-  double totalMs = 0;  // wall clock of render()
-};
-
-struct FrameResult {
-  std::vector<glm::vec4> pixels;  // premultiplied RGBA, row 0 at the top; rank 0 only
-  gpu::RenderStats counters{};
-  FrameTimings timings;
-  uint64_t segments = 0;           // segments found this frame on this rank
-  uint64_t fragments = 0;          // fragments written this frame on this rank
-  comp::CompositeStats composite;  // this rank's share of compositing
 };
 
 class Renderer {
@@ -73,40 +53,18 @@ class Renderer {
   std::vector<std::vector<comp::DcFragment>> lastFragments() const;
 
  private:
-  gpu::FrameParams frameParams(const RenderSettings& s) const;
-  void renderTwoPass(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
-  void renderCached(const RenderSettings& s, uint32_t slots, gpu::FrameParams& p, FrameResult& out);
-  // Segment cache slots per pixel that s.segmentCacheBytes allows (0: stage-split passes).
-  uint32_t segmentCacheSlots(const RenderSettings& s) const;
-  void ensureSegments(gpu::FrameParams& p, uint64_t segments);
-  // One submission of `record` between timestamps: its device milliseconds.
-  double timedDispatch(const std::function<void(VkCommandBuffer)>& record);
-  // After a counting pass: prefix sum (the lists), segment storage, parameters for the next pass.
-  void scanCounts(gpu::FrameParams& p, FrameResult& out, bool segments);
-  // False when the device has no room for a cache of `bytes` (the frame then runs stage-split).
-  bool ensureSegmentCache(uint64_t bytes);
-  void renderFixed(const RenderSettings& s, gpu::FrameParams& p, FrameResult& out);
-  void writeParams(const gpu::FrameParams& p);
-  // Checks the planes and writes them, in device coordinates, into p.
-  void setClipPlanes(std::span<const scene::ClipPlane> planes, gpu::FrameParams& p) const;
+  FrameResult renderFrame(const RenderSettings& s, std::vector<glm::vec4> reuse, bool explicitRays);
+  bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
+  const ListStrategy& strategyFor(const RenderSettings& s);
 
   const vk::Context& ctx_;
   const GpuScene& scene_;
   comp::DeepCompositor& compositor_;
-  void updatePreintegration(const RenderSettings& s);
-  bool twoPass() const { return compositor_.options().mode == comp::ListMode::TwoPass; }
-
   std::shared_ptr<PassCache> passes_;  // pipelines per pass and options, built on first use
-  PassOptions passOptions_;            // of the frame being rendered
-  vk::Buffer preintegration_;
-  uint64_t preintegrationKey_ = 0;
-  PreintegrationTable preintegrationTable_;
-  vk::Buffer params_, stats_, transferFunction_, segments_, segmentCache_, rays_;
-  uint64_t lastSegmentTotal_ = 0;
-  bool lastSegmentsKept_ = false;  // whether the last frame wrote its segment lists
-  uint64_t failedCacheBytes_ = 0;  // the smallest segment cache the device had no room for
-  bool useRays_ = false;
-  vk::TimestampQueries timestamps_;
+  FrameResources resources_;
+  StageSplitLists stageSplit_;
+  CachedLists cached_;
+  FixedLists fixed_;
 };
 
 }  // namespace sm::render

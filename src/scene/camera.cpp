@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "common/error.h"
+#include "common/setting_error.h"
 
 namespace sm::scene {
 
@@ -18,7 +19,7 @@ ViewPreset parseViewPreset(const std::string& s) {
   if (s == "-y") return ViewPreset::NegY;
   if (s == "+z") return ViewPreset::PosZ;
   if (s == "-z") return ViewPreset::NegZ;
-  throw Error("--view: unknown view '", s, "' (use iso, +x, -x, +y, -y, +z or -z)");
+  throw SettingError("view", "unknown view '", s, "' (use iso, +x, -x, +y, -y, +z or -z)");
 }
 
 glm::dvec3 defaultUp(const glm::dvec3& viewDirection) {
@@ -30,6 +31,10 @@ glm::dvec3 defaultUp(const glm::dvec3& viewDirection) {
 }
 
 namespace {
+
+std::string point(const glm::dvec3& p) {
+  return concat(p.x, ",", p.y, ",", p.z);
+}
 
 double boundingRadius(const mesh::Bounds& b) {
   return std::max(0.5 * b.diagonal(), 1e-30);
@@ -87,16 +92,17 @@ double fitParallelScale(const mesh::Bounds& b, double aspect) {
 CameraFrame cameraFrame(const Camera& c, int width, int height) {
   if (width <= 0 || height <= 0) throw Error("image size ", width, "x", height, " is empty");
   if (!(c.fovyDeg > 0.0 && c.fovyDeg < 180.0))
-    throw Error("--fovy: ", c.fovyDeg, " degrees is not in (0, 180)");
+    throw SettingError("fovy", c.fovyDeg, " degrees is not in (0, 180)");
   if (c.parallel && !(c.parallelScale > 0.0 && c.parallelScale < 1e30))
-    throw Error("--parallel-scale: ", c.parallelScale, " is not a positive length below 1e30");
+    throw SettingError("parallel-scale", c.parallelScale, " is not a positive length below 1e30");
   glm::dvec3 f = c.at - c.eye;
-  if (glm::length(f) == 0.0) throw Error("camera: --eye and --at are the same point");
+  if (glm::length(f) == 0.0)
+    throw SettingError("at", point(c.at), " is the eye's position: the camera looks nowhere");
   f = glm::normalize(f);
   glm::dvec3 r = glm::cross(f, c.up);
-  if (glm::length(c.up) == 0.0) throw Error("camera: --up is the zero vector");
+  if (glm::length(c.up) == 0.0) throw SettingError("up", point(c.up), " is the zero vector");
   if (glm::length(r) < 1e-12 * glm::length(c.up))
-    throw Error("camera: --up is parallel to the viewing direction");
+    throw SettingError("up", point(c.up), " is parallel to the viewing direction");
   r = glm::normalize(r);
   CameraFrame fr;
   fr.eye = c.eye;

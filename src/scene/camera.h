@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/unstructured_mesh.h"
+#include "mesh/bounds.h"
 
 namespace sm::scene {
 

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/error.h"
+#include "common/setting_error.h"
 
 namespace sm::scene {
 
@@ -18,17 +19,17 @@ bool finite(const glm::dvec3& v) {
 
 }  // namespace
 
-void checkClipPlanes(std::span<const ClipPlane> planes, const std::string& what) {
+void checkClipPlanes(std::span<const ClipPlane> planes) {
   if (planes.size() > size_t(kMaxClipPlanes))
-    throw Error(what, ": ", planes.size(), " clip planes, at most ", kMaxClipPlanes);
+    throw SettingError("clip", planes.size(), " clip planes, at most ", kMaxClipPlanes);
   for (size_t i = 0; i < planes.size(); ++i) {
     const ClipPlane& p = planes[i];
     if (!finite(p.point) || !finite(p.normal))
-      throw Error(what, ": clip plane ", i + 1, " has a non-finite point or normal");
+      throw SettingError("clip", "clip plane ", i + 1, " has a non-finite point or normal");
     // Squared length in range: a normal of 1e-200 would square to zero and then divide by it.
     const double len = glm::length(p.normal);
     if (!(len > 1e-150 && len < 1e150))
-      throw Error(what, ": clip plane ", i + 1, " has a zero normal");
+      throw SettingError("clip", "clip plane ", i + 1, " has a zero normal");
   }
 }
 

@@ -20,9 +20,9 @@ struct ClipPlane {
 // As many as a box needs; the device keeps them in fixed storage (render_types.h).
 constexpr int kMaxClipPlanes = 6;
 
-// Throws sm::Error, naming `what` and the plane, for more than kMaxClipPlanes planes, a zero or
+// Throws SettingError "clip", naming the plane, for more than kMaxClipPlanes planes, a zero or
 // non-finite normal or a non-finite point.
-void checkClipPlanes(std::span<const ClipPlane> planes, const std::string& what);
+void checkClipPlanes(std::span<const ClipPlane> planes);
 
 // The part [lo, hi) of the ray origin + t dir (t in units of |dir|) that every plane keeps;
 // lo = -inf and hi = +inf where no plane bounds it, lo >= hi when the ray is clipped away whole.

@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/file_util.h"
+#include "common/setting_error.h"
 #include "scene/png_writer.h"
 
 namespace sm::scene {
@@ -110,9 +111,10 @@ void writeImage(const std::string& path, const Image& img, const Background& bac
   std::string ext = fileExtension(path);
   if (ext == ".png") return writePng(path, img, background);
   if (ext == ".pfm" && !background)
-    throw Error("--out: '", path, "': a PFM has no alpha; a transparent background needs .png");
+    throw SettingError("out", "'", path,
+                       "': a PFM has no alpha; a transparent background needs .png");
   if (ext == ".pfm") return writePfm(path, img, *background);
-  throw Error("--out: '", path, "' must end in .png or .pfm");
+  throw SettingError("out", "'", path, "' must end in .png or .pfm");
 }
 
 Image readPng(const std::string& path) {

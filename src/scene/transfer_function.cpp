@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/file_util.h"
 #include "common/log.h"
+#include "common/setting_error.h"
 #include "scene/color_space.h"
 #include "scene/colormap_data.h"
 #include "scene/control_points.h"
@@ -30,10 +31,10 @@ double TransferFunction::valueAt(double x) const {
   return lo + x * (hi - lo);
 }
 
-void checkScale(const TransferFunction& tf, const std::string& what) {
+void checkScale(const TransferFunction& tf) {
   if (tf.scale == ScalarScale::Log && !(tf.lo > 0.0 && std::isfinite(tf.hi)))
-    throw Error(what, ": a log scale needs a positive range, not ", tf.lo, " .. ", tf.hi,
-                ": give --range LO,HI with 0 < LO < HI");
+    throw SettingError("log-scale", "a log scale needs a positive range, not ", tf.lo, " .. ",
+                       tf.hi, ": give a range LO,HI with 0 < LO < HI");
 }
 
 glm::dvec4 TransferFunction::lookup(double s) const {
@@ -88,7 +89,7 @@ TransferFunction fromBuiltin(const std::string& name, int entries) {
     tf.table = rampOpacity(std::move(tf.table));
     return tf;
   }
-  throw Error("--colormap: no built-in colour map '", name, "'");
+  throw SettingError("colormap", "no built-in colour map '", name, "'");
 }
 
 bool isBuiltin(const std::string& name) {
@@ -239,17 +240,17 @@ TransferFunction parseParaViewColormap(const std::string& text, const std::strin
   return fromParaViewMap(choosePreset(parsed, src, preset), src, entries);
 }
 
-void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
-                      const std::string& what) {
-  if (points.empty()) throw Error(what, ": no opacity points");
+void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points) {
+  if (points.empty()) throw SettingError("opacity", "no opacity points");
   for (size_t i = 0; i < points.size(); ++i) {
     const OpacityPoint& p = points[i];
     if (!std::isfinite(p.value) || !(p.opacity >= 0.0 && p.opacity <= 1.0))
-      throw Error(what, ": point ", i + 1, " (", p.value, ":", p.opacity,
-                  ") needs a finite value and an opacity in [0, 1]");
+      throw SettingError("opacity", "point ", i + 1, " (", p.value, ":", p.opacity,
+                         ") needs a finite value and an opacity in [0, 1]");
     if (i > 0 && p.value < points[i - 1].value)
-      throw Error(what, ": point ", i + 1, " (value ", p.value, ") comes before point ", i,
-                  " (value ", points[i - 1].value, "): give the points in increasing value");
+      throw SettingError("opacity", "point ", i + 1, " (value ", p.value, ") comes before point ",
+                         i, " (value ", points[i - 1].value,
+                         "): give the points in increasing value");
   }
   auto at = [&](double v) {
     if (v < points.front().value) return points.front().opacity;
@@ -274,7 +275,8 @@ TransferFunction makeTransferFunction(const std::string& colormap, int entries) 
   const std::string lower = lowered(colormap);
   if (const size_t at = lower.rfind(".json:"); at != std::string::npos) {
     const std::string file = colormap.substr(0, at + 5), name = colormap.substr(at + 6);
-    if (name.empty()) throw Error("--colormap: '", colormap, "' names no colour map after ':'");
+    if (name.empty())
+      throw SettingError("colormap", "'", colormap, "' names no colour map after ':'");
     return parseParaViewColormap(readTextFile(file), file, entries, name);
   }
   // The short names first, as they were; then ParaView's preset names, spelled as ParaView does
@@ -289,10 +291,11 @@ TransferFunction makeTransferFunction(const std::string& colormap, int entries) 
   std::string close;
   for (const std::string& n : closestNames(colormap, all))
     close += (close.empty() ? "'" : ", '") + n + "'";
-  throw Error("--colormap: unknown colour map '", colormap, "'",
-              close.empty() ? std::string() : " (closest: " + close + ")",
-              "; give a built-in name, a ParaView preset name (docs/TRANSFER_FUNCTIONS.md lists "
-              "them) or a ParaView .json file");
+  throw SettingError(
+      "colormap", "unknown colour map '", colormap, "'",
+      close.empty() ? std::string() : " (closest: " + close + ")",
+      "; give a built-in name, a ParaView preset name (docs/TRANSFER_FUNCTIONS.md lists "
+      "them) or a ParaView .json file");
 }
 
 }  // namespace sm::scene

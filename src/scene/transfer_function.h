@@ -44,9 +44,9 @@ struct TransferFunction {
   double valueAt(double x) const;
 };
 
-// Throws sm::Error naming `what` when the range cannot take the scale: a log scale needs
+// Throws SettingError "log-scale" when the range cannot take the scale: a log scale needs
 // 0 < lo <= hi.
-void checkScale(const TransferFunction& tf, const std::string& what);
+void checkScale(const TransferFunction& tf);
 
 // Names accepted by --colormap besides a .json file.
 std::vector<std::string> builtinColormapNames();
@@ -66,10 +66,9 @@ struct OpacityPoint {
 // Replaces the table's opacity by the points' piecewise-linear interpolation, evaluated at each
 // entry's data value over [tf.lo, tf.hi]: the first point's opacity below it, the last's above.
 // Points must be sorted by value; equal values make a step (the later point holds from there
-// on). Throws sm::Error, naming `what`, for no points, unsorted or non-finite values, or an
+// on). Throws SettingError "opacity" for no points, unsorted or non-finite values, or an
 // opacity outside [0, 1].
-void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points,
-                      const std::string& what);
+void setOpacityPoints(TransferFunction& tf, std::span<const OpacityPoint> points);
 
 // Parses a ParaView colour map (an object, or an array of them as ParaView exports presets: the
 // one whose "Name" is `preset`, or without one the first, warning when there are others) with

@@ -9,7 +9,7 @@
 #include "common/log.h"
 #include "common/timer.h"
 #include "pipeline/render_setup.h"
-#include "render/frame_defaults.h"
+#include "render/step_limits.h"
 
 namespace sm::view {
 namespace {
@@ -65,7 +65,7 @@ int parseViewStep(const std::string& time) {
 ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
                      comm::Communicator& comm)
     : job_(job), comm_(comm) {
-  app::checkImageSize(job);
+  session::checkRequest(app::frameRequest(job));
   const int firstStep = parseViewStep(job.time);
   Timer load;
   // The viewer cycles through every point field as a file holds it (vectors as magnitudes), then
@@ -101,9 +101,10 @@ ViewScene::ViewScene(const app::RenderJob& job, const vk::ContextOptions& vo,
   prepared_ = app::prepareShare(share_, prep::PrepOptions{job.compact}, job.cacheDir, comm.rank(),
                                 comm.size());
   prepareSeconds_ = prep.seconds();
-  ctx_ = std::make_unique<vk::Context>(vo);
-  gpu_ = std::make_unique<render::GpuScene>(*ctx_, prepared_.rank);
-  loads_ = std::make_unique<app::StepLoads>(*source_, prepared_.rank, *gpu_);
+  session_ = std::make_unique<session::RankSession>(
+      vo, comm::withPeers(comm_), session::SessionOptions{job.lists, vk::Tracer::Auto, 2});
+  session_->setScene(prepared_.rank, std::move(prepared_.rank.positions));
+  loads_ = std::make_unique<app::StepLoads>(*source_, prepared_.rank, session_->scene());
 }
 
 ViewScene::~ViewScene() = default;
@@ -218,8 +219,11 @@ void ViewScene::applyState(ViewState& state) {
     settings_.transferFunction.scale = scale;
     settings_.transferFunction.unitDistance = unit;
     if (points && fieldIndex_ == 0)
-      scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints, "--opacity");
-    app::applyNanColor(job_, settings_.transferFunction);
+      scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints);
+    if (job_.nanColor) {  // over the colour map's own NaN colour, for every map
+      settings_.transferFunction.nanColor = glm::vec3(*job_.nanColor);
+      settings_.transferFunction.nanOpacity = job_.nanColor->a;
+    }
     colormap_ = state.colormap;
     tableField_ = fieldIndex_;
     tableScale_ = scale;
@@ -240,31 +244,9 @@ void ViewScene::applyState(ViewState& state) {
   settings_.height = renderHeight(state);
 }
 
-// A new size needs new lists and images, not new pipelines: its renderer takes over the others'
-// (compiling them again cost seconds per resize on lavapipe). Two sizes are kept, so that
-// interaction at a reduced size and the still frames between build nothing.
-render::Renderer& ViewScene::target(int width, int height) {
-  for (size_t i = 0; i < targets_.size(); ++i)
-    if (targets_[i].width == width && targets_[i].height == height) {
-      std::rotate(targets_.begin() + long(i), targets_.begin() + long(i) + 1, targets_.end());
-      return *targets_.back().renderer;
-    }
-  if (targets_.size() >= 2) targets_.erase(targets_.begin());
-  Target t;
-  t.width = width;
-  t.height = height;
-  t.compositor = std::make_unique<comp::DeepCompositor>(*ctx_, comm::withPeers(comm_), width,
-                                                        height, job_.lists);
-  t.renderer = std::make_unique<render::Renderer>(*ctx_, *gpu_, *t.compositor, passes_);
-  if (passes_ && t.renderer->passes() != passes_) retiredPipelines_ += passes_->pipelinesBuilt();
-  passes_ = t.renderer->passes();
-  targets_.push_back(std::move(t));
-  return *targets_.back().renderer;
-}
-
 render::FrameResult ViewScene::render(ViewState& state, std::vector<glm::vec4> reuse) {
   applyState(state);
-  return target(settings_.width, settings_.height).render(settings_, std::move(reuse));
+  return session_->render(settings_, std::move(reuse));
 }
 
 }  // namespace sm::view

@@ -25,6 +25,7 @@
 #include "pipeline/step_loads.h"
 #include "pipeline/step_source.h"
 #include "render/renderer.h"
+#include "session/rank_session.h"
 #include "viewer/view_state.h"
 
 namespace sm::view {
@@ -59,12 +60,10 @@ class ViewScene {
   // `reuse`: storage for the image (Renderer::render).
   render::FrameResult render(ViewState& state, std::vector<glm::vec4> reuse = {});
 
-  const vk::Context& context() const { return *ctx_; }
-  const render::GpuScene& gpu() const { return *gpu_; }
+  const vk::Context& context() const { return session_->context(); }
+  const render::GpuScene& gpu() const { return session_->scene(); }
   // Pipelines built for this scene's frames so far (a resize builds none).
-  uint64_t pipelinesBuilt() const {
-    return retiredPipelines_ + (targets_.empty() ? 0 : passes_->pipelinesBuilt());
-  }
+  uint64_t pipelinesBuilt() const { return session_->pipelinesBuilt(); }
   const FieldInfo& field() const { return field_; }
   const render::RenderSettings& settings() const { return settings_; }
   // Steps whose scalars a prefetch had loaded when they were shown, and what loading the steps
@@ -103,21 +102,12 @@ class ViewScene {
   // "Finer step" stops here: a hundredth of the starting step keeps frames interactive.
   double finestInteractiveStep_ = 0.0;
   double loadSeconds_ = 0, prepareSeconds_ = 0;
-  std::unique_ptr<vk::Context> ctx_;
-  std::unique_ptr<render::GpuScene> gpu_;
-  std::unique_ptr<app::StepLoads> loads_;  // after gpu_: its prefetch thread writes there
+  // The device, the scene and a compositor and renderer for each of the two image sizes last
+  // used (interaction at a reduced size, the still frames between).
+  std::unique_ptr<session::RankSession> session_;
+  std::unique_ptr<app::StepLoads> loads_;  // after session_: its prefetch thread writes there
   uint64_t prefetchedSteps_ = 0;
   double scalarWaitMs_ = 0, scalarLoadMs_ = 0;
-  // A compositor and renderer for one image size.
-  struct Target {
-    int width = 0, height = 0;
-    std::unique_ptr<comp::DeepCompositor> compositor;
-    std::unique_ptr<render::Renderer> renderer;
-  };
-  render::Renderer& target(int width, int height);
-  std::vector<Target> targets_;                // the most recently used last
-  std::shared_ptr<render::PassCache> passes_;  // the pipelines every target's renderer shares
-  uint64_t retiredPipelines_ = 0;  // built by renderers whose pipelines no later one took over
   render::RenderSettings settings_;
   FieldInfo field_;
   std::vector<std::optional<FieldInfo>> fields_;  // choices_.fields', once selected

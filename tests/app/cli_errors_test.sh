@@ -132,7 +132,7 @@ expect "--stats-json: 'h_0001_all.png' is also the name of a numbered frame of -
 # Without --step the step comes from the mesh: faults name the mesh or the view, not --step.
 sed -e 's/0 0 0 1 0 0 0 1 0 0 0 1/0 0 0 1 0 0 0 1 0 1 1 0/' -e 's/Name="f&#10;[^"]*"/Name="f"/' forged.vtu > flat.vtu
 expect "flat.vtu: every element has zero volume" "$sm" render flat.vtu --out a.png
-expect "move the eye closer or give --step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
+expect "--step: the default sample step" "$sm" render ok.pvtu --eye 1e9,0,0 --out a.png
 mkdir -p cmap.json
 expect "cmap.json" "$sm" render ok.pvtu --colormap cmap.json --out a.png
 # A preset file of several maps: FILE.json:NAME picks one; a name it lacks is refused, naming those
@@ -171,7 +171,7 @@ expect "vec.vtu: field 'v[2]': point array 'v' has 2 components" "$sm" render ve
 # Camera and option faults are named for the option at fault, before the step is derived from them.
 expect "--fovy: 0 degrees is not in (0, 180)" "$sm" render ok.pvtu --fovy 0 --out a.png
 expect "--view and --up: give one" "$sm" render ok.pvtu --view +z --up 0,1,0 --out a.png
-expect "--up is the zero vector" "$sm" render ok.pvtu --eye 3,3,3 --up 0,0,0 --out a.png
+expect "--up: 0,0,0 is the zero vector" "$sm" render ok.pvtu --eye 3,3,3 --up 0,0,0 --out a.png
 expect "--eye: components beyond 1e30" "$sm" render ok.pvtu --eye 1e39,0,1 --step 1e38 --out a.png
 expect "--eye: 0.5,0.5,0.5 is the centre of the data" "$sm" render ok.pvtu --eye 0.5,0.5,0.5 --out a.png
 expect "in [0, 100]" "$sm" render ok.pvtu --shading-params 1e39,0,0,20 --out a.png

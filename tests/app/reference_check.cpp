@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
         p += used;
         if (*p == ',') ++p;
       }
-      scene::setOpacityPoints(tf, points, "REFERENCE_CHECK_OPACITY");
+      scene::setOpacityPoints(tf, points);
     }
     scene::Camera cam;
     cam.eye = {std::atof(argv[11]), std::atof(argv[12]), std::atof(argv[13])};

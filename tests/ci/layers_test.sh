@@ -38,5 +38,9 @@ cp "$root/src/partition/CMakeLists.txt" "$work/src/partition/CMakeLists.txt"
 yes '// filler' | head -n 12000 >"$work/src/partition/filler.cpp"
 expect "more than 15%: split it by what its parts hold"
 rm "$work/src/partition/filler.cpp"
-[ $fails -eq 0 ] && echo "layer check: passes on the tree, catches 7 kinds of violation"
+r=$work/src/render/step_limits.h
+cp "$r" "$r.orig" && echo '#include "mesh/unstructured_mesh.h"' >>"$r"
+expect "src/render/step_limits.h: includes mesh/unstructured_mesh.h: the renderer takes boxes, not meshes"
+cp "$r.orig" "$r"
+[ $fails -eq 0 ] && echo "layer check: passes on the tree, catches 8 kinds of violation"
 exit $((fails > 0))

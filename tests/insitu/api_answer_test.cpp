@@ -163,8 +163,11 @@ TEST_F(InsituApi, LogScaleTakesTheLogCoordinate) {
     vis_->render(s);
     ADD_FAILURE() << "a log scale over [0, 1000] was accepted";
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("render: logScale: a log scale needs a positive range"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("render: logScale: field '"), std::string::npos)
+        << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("has the range 0 .. 1000, and a log scale needs a positive"),
+        std::string::npos)
         << e.what();
   }
 }
@@ -219,7 +222,7 @@ TEST_F(InsituApi, LegendIsTheOneRenderDraws) {
     vis_->render(s);
     ADD_FAILURE() << "a legend background of 2 was accepted";
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("render: legendBackground components must be in [0, 1]"),
+    EXPECT_NE(std::string(e.what()).find("render: legendBackground: components must be in [0, 1]"),
               std::string::npos)
         << e.what();
   }

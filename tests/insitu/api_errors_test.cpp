@@ -193,31 +193,33 @@ TEST_F(InsituErrors, Settings) {
     change(s);
     expectError([&] { vis_->render(s); }, part);
   };
-  expectSettingError([](auto& s) { s.width = 0; }, "render: image size 0x8");
-  expectSettingError([](auto& s) { s.view = "diagonal"; }, "render: view 'diagonal'");
+  expectSettingError([](auto& s) { s.width = 0; },
+                     "render: width/height: 0x8 is not a usable image size");
+  expectSettingError([](auto& s) { s.view = "diagonal"; }, "render: view: unknown view 'diagonal'");
   expectSettingError(
       [](auto& s) {
         s.camera = api::Camera{{1, 1, 1}, {1, 1, 1}};
       },
-      "camera eye and at are the same point");
+      "render: camera.at: 1,1,1 is the eye's position");
   expectSettingError(
       [](auto& s) {
         s.camera = api::Camera{{0, 0, 5}, {0, 0, 0}, {0, 0, 1}};
       },
-      "camera up is zero or parallel");
+      "render: camera.up: 0,0,1 is parallel to the viewing direction");
   expectSettingError(
       [](auto& s) {
         s.range = std::array<double, 2>{2, 1};
       },
-      "render: range [2, 1] must be finite with lo <= hi");
+      "render: range: [2, 1] must be finite with lo <= hi");
   expectSettingError(
       [](auto& s) {
         s.table = {{0, 0, 0, 2}, {0, 0, 0, 0}};
       },
-      "table entries must be in [0, 1], not 2");
+      "render: table: entries must be in [0, 1], not 2");
   expectSettingError([](auto& s) { s.colormap = "no-such-map"; },
                      "render: colormap: unknown colour map 'no-such-map'; give a built-in name");
-  expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); }, "must be finite");
+  expectSettingError([](auto& s) { s.sampleDistance = std::nan(""); },
+                     "render: sampleDistance: nan must be finite");
   expectSettingError(
       [](auto& s) {
         s.clipPlanes = {{{0, 0, 0}, {0, 0, 0}}};
@@ -237,7 +239,7 @@ TEST_F(InsituErrors, Settings) {
       },
       "render: sampleDistance: 1e+06 is longer than the data's diagonal");
   expectSettingError([](auto& s) { s.integration = "linear"; },
-                     "render: integration 'linear' (use exact or sampled)");
+                     "render: integration: 'linear' is not exact or sampled");
 }
 
 // Options::tracer: a name it does not know is refused; each tracer the device offers renders the
@@ -267,7 +269,9 @@ TEST(InsituTracer, EachTracerRendersTheSameImageAndABadNameIsRefused) {
     EXPECT_EQ(r->stats().validationErrors, 0u);
   }
   ASSERT_FALSE(images.empty());
-  if (images.size() == 2) EXPECT_EQ(images[0], images[1]);
+  if (images.size() == 2) {
+    EXPECT_EQ(images[0], images[1]);
+  }
 }
 
 // After any of these errors the renderer renders as if they had not happened.

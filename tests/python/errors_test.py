@@ -98,18 +98,23 @@ class Options(unittest.TestCase):
         support.write_vtu(support.tet_box(2), cls.path)
 
     def test_cli_messages(self):
-        cases = [({"size": (0, 10)}, "--size"), ({"colormap": "nope"}, "nope"),
-                 ({"range": (2, 1)}, "--range"), ({"fovy": 200}, "--fovy"),
-                 ({"view": "sideways"}, "sideways"), ({"no_such_option": 1}, "--no-such-option"),
-                 ({"eye": (1, 2)}, "--eye"), ({"field": "missing"}, "missing"),
+        # Settings are named by their keyword arguments, as the command line names its options.
+        cases = [({"size": (0, 10)}, "size: '0x10'"), ({"colormap": "nope"}, "colormap: "),
+                 ({"range": (2, 1)}, "range: "), ({"fovy": 200}, "fovy: 200"),
+                 ({"view": "sideways"}, "view: unknown view 'sideways'"),
+                 ({"no_such_option": 1}, "--no-such-option"),
+                 ({"eye": (1, 2)}, "eye: '1"), ({"field": "missing"}, "missing"),
                  ({"legend": "yes"}, "legend"), ({"size": (64, "x")}, "size"),
-                 ({"clip": "w>1"}, "--clip"), ({"opacity": [(1, 2)]}, "--opacity")]
+                 ({"clip": "w>1"}, "clip: "), ({"opacity": [(1, 2)]}, "opacity: "),
+                 ({"log_scale": True, "range": (0, 1)}, "log_scale: ")]
         for kw, text in cases:
             with self.subTest(**{k: str(v) for k, v in kw.items()}):
                 with self.assertRaises(ValueError) as c:
                     shellmarch.render(self.path, **kw)
                 self.assertIn(text, str(c.exception))
                 self.assertNotIn("\n", str(c.exception))
+                if text.endswith(": "):  # a setting's key, not the option's
+                    self.assertNotIn("--" + text, str(c.exception))
 
     def test_missing_file_is_an_os_error(self):
         missing = os.path.join(os.path.dirname(self.path), "missing.vtu")

@@ -213,10 +213,10 @@ TEST(ClipPlanes, TheRendererRefusesImpossiblePlanes) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message(std::vector<scene::ClipPlane>(7)), "clip planes: 7 clip planes, at most 6");
-  EXPECT_EQ(message({{{0, 0, 0}, {0, 0, 0}}}), "clip planes: clip plane 1 has a zero normal");
+  EXPECT_EQ(message(std::vector<scene::ClipPlane>(7)), "--clip: 7 clip planes, at most 6");
+  EXPECT_EQ(message({{{0, 0, 0}, {0, 0, 0}}}), "--clip: clip plane 1 has a zero normal");
   EXPECT_EQ(message({{{0, 0, 0}, {0, 0, 1}}, {{NAN, 0, 0}, {0, 0, 1}}}),
-            "clip planes: clip plane 2 has a non-finite point or normal");
+            "--clip: clip plane 2 has a non-finite point or normal");
 }
 
 }  // namespace

@@ -16,9 +16,10 @@
 #include "mesh/mesh_builder.h"
 #include "prep/prepare.h"
 #include "ray_harness.h"
-#include "render/frame_defaults.h"
 #include "render/gpu_scene.h"
+#include "render/step_limits.h"
 #include "render_harness.h"
+#include "scene/view_defaults.h"
 #include "support/test_meshes.h"
 #include "test_meshes.h"
 
@@ -434,7 +435,7 @@ TEST(HardCases, FarPointsNoElementUsesAreLeftOut) {
   // by a far point would make every ray test every shell triangle.
   const prep::PreparedRank r =
       prep::prepareRank(m, prep::makeGlobalFrame(m.bounds()), prep::PrepOptions{}).rank;
-  for (const VkAabbPositionsKHR& b : shellBoxes(r))
+  for (const VkAabbPositionsKHR& b : shellBoxes(r, r.positions))
     EXPECT_LT(std::max({b.maxX - b.minX, b.maxY - b.minY, b.maxZ - b.minZ}), 0.5f);
 }
 
@@ -474,9 +475,9 @@ TEST(HardCases, CoarseMeshesAreSampledAt256StepsAcrossByDefault) {
   mesh::Bounds unit;
   unit.extend({0, 0, 0});
   unit.extend({1, 1, 1});
-  EXPECT_DOUBLE_EQ(defaultStep(0.25, unit), std::sqrt(3.0) / 256);
-  EXPECT_DOUBLE_EQ(defaultStep(0.001, unit), 0.0005);  // fine meshes keep half an element
-  EXPECT_DOUBLE_EQ(defaultStep(0.25, mesh::Bounds{}), 0.125);
+  EXPECT_DOUBLE_EQ(scene::defaultStep(0.25, unit), std::sqrt(3.0) / 256);
+  EXPECT_DOUBLE_EQ(scene::defaultStep(0.001, unit), 0.0005);  // fine meshes keep half an element
+  EXPECT_DOUBLE_EQ(scene::defaultStep(0.25, mesh::Bounds{}), 0.125);
   auto m = ref::test::cubeMesh(Split::Hex, 4);
   auto f = smoothField(m, {0, 0, 0}, 1);
   RenderSettings s = cubeView(48);
@@ -491,9 +492,9 @@ TEST(HardCases, CoarseMeshesAreSampledAt256StepsAcrossByDefault) {
       for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(g.pixels[i][c] - exact.pixels[i][c]));
     return d;
   };
-  const double mean = elementSizeSum(m).mean();
-  const float elementRule = maxDiff(elementStep(mean)),
-              capped = maxDiff(defaultStep(mean, m.bounds()));
+  const double mean = scene::elementSizeSum(m).mean();
+  const float elementRule = maxDiff(scene::elementStep(mean)),
+              capped = maxDiff(scene::defaultStep(mean, m.bounds()));
   EXPECT_GT(elementRule, 0.08f);  // 0.11 on lavapipe
   EXPECT_LT(capped, 0.2f * elementRule);
   EXPECT_LT(capped, 0.025f);  // 0.012

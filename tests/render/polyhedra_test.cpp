@@ -12,7 +12,6 @@
 #include <random>
 
 #include "io/mesh_io.h"
-#include "render/frame_defaults.h"
 #include "render_harness.h"
 #include "scene/camera.h"
 #include "support/test_support.h"

@@ -105,7 +105,7 @@ RayComparison compareRays(const mesh::UnstructuredMesh& original,
   auto prepared =
       prep::prepareRank(m, prep::makeGlobalFrame(original.bounds()), prep::PrepOptions{}).rank;
   vk::Context ctx;
-  render::GpuScene scene(ctx, prepared);
+  render::GpuScene scene(ctx, prepared, std::move(prepared.positions));
   scene.setScalars(prep::gatherScalars(prepared, values));
   comp::DeepCompositor compositor(ctx, nullptr, int(rays.size()), 1, comp::CompositorOptions{});
   render::Renderer renderer(ctx, scene, compositor);

@@ -47,7 +47,7 @@ RenderRig::RenderRig(const mesh::UnstructuredMesh& mesh, const std::vector<float
                      int width, int height, const GpuRenderOptions& options)
     : ctx(options.context),
       prepared(test::prepared(mesh, options.compact)),
-      scene(ctx, prepared, options.shell),
+      scene(ctx, prepared, std::move(prepared.positions), options.shell),
       compositor(ctx, nullptr, width, height, options.lists),
       renderer(ctx, scene, compositor) {
   scene.setScalars(prep::gatherScalars(prepared, values));

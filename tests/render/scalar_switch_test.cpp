@@ -118,7 +118,7 @@ TEST_P(ScalarSwitchTest, ScalarsOnlyAndFramesEqualFreshRenders) {
   vk::ContextOptions options;
   options.forceStaging = GetParam();
   vk::Context ctx(options);
-  GpuScene gpu(ctx, rank);
+  GpuScene gpu(ctx, rank, std::move(rank.positions));
   comp::DeepCompositor compositor(ctx, nullptr, s.width, s.height, comp::CompositorOptions{});
   Renderer renderer(ctx, gpu, compositor);
   auto load = [&](const Switch& sw) -> ScalarPrefetcher::Load {
@@ -162,7 +162,7 @@ TEST(ScalarPrefetcher, ALoadErrorSurfacesAtTheSwapAndTheSceneStaysUsable) {
   prep::PreparedRank rank =
       prep::prepareRank(m, prep::makeGlobalFrame(input.bounds()), prep::PrepOptions{}).rank;
   vk::Context ctx;
-  GpuScene gpu(ctx, rank);
+  GpuScene gpu(ctx, rank, std::move(rank.positions));
   ScalarPrefetcher prefetcher(gpu);
   prefetcher.prefetch([]() -> std::vector<float> { throw FileError("steps.vtu", "truncated"); });
   EXPECT_THROW(prefetcher.swap(), FileError);

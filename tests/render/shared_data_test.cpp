@@ -6,9 +6,9 @@
 #include <glm/geometric.hpp>
 
 #include "io/mesh_io.h"
-#include "render/frame_defaults.h"
 #include "render_harness.h"
 #include "scene/camera.h"
+#include "scene/view_defaults.h"
 #include "support/test_support.h"
 
 namespace sm::render {
@@ -35,7 +35,7 @@ void expectMatchesReference(const std::string& file) {
   s.transferFunction.lo = lo;
   s.transferFunction.hi = hi > lo ? hi : lo + 1;
   s.transferFunction.unitDistance = m.bounds().diagonal() / 8;
-  s.dt = defaultStep(elementSizeSum(m).mean(), m.bounds());
+  s.dt = scene::defaultStep(scene::elementSizeSum(m).mean(), m.bounds());
   s.integration = Integration::Sampled;  // the grid reference's samples
   s.earlyTermination = 2.0;
   auto gpu = test::renderOnGpu(m, values, s);

@@ -55,7 +55,7 @@ TEST(ClipSpan, ARayParallelToAPlaneIsKeptByItsSide) {
 TEST(ClipPlanes, ImpossiblePlanesAreRefusedByNumber) {
   auto message = [](std::vector<ClipPlane> planes) {
     try {
-      checkClipPlanes(planes, "--clip");
+      checkClipPlanes(planes);
     } catch (const Error& e) {
       return std::string(e.what());
     }

@@ -27,7 +27,7 @@ TEST(OpacityPoints, InterpolateLinearlyBetweenPointsInDataValues) {
   TransferFunction tf = table();
   const glm::vec3 rgb = glm::vec3(tf.table[100]);
   const OpacityPoint points[] = {{12.5, 0.0}, {15.0, 0.8}, {17.5, 0.2}};
-  setOpacityPoints(tf, points, "--opacity");
+  setOpacityPoints(tf, points);
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 10.0), 0.0f);  // the first point's opacity below it
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 12.5), 0.0f);
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 13.75), 0.4f);  // half way up
@@ -40,12 +40,12 @@ TEST(OpacityPoints, InterpolateLinearlyBetweenPointsInDataValues) {
 TEST(OpacityPoints, EqualValuesMakeAStepAndOnePointIsConstant) {
   TransferFunction tf = table();
   const OpacityPoint step[] = {{15.0, 0.0}, {15.0, 1.0}};
-  setOpacityPoints(tf, step, "--opacity");
+  setOpacityPoints(tf, step);
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 14.6875), 0.0f);
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 15.0), 1.0f);  // the later point holds from the step on
   EXPECT_FLOAT_EQ(alphaAtValue(tf, 20.0), 1.0f);
   const OpacityPoint one[] = {{-1e9, 0.3}};
-  setOpacityPoints(tf, one, "--opacity");
+  setOpacityPoints(tf, one);
   for (const glm::vec4& e : tf.table) EXPECT_FLOAT_EQ(e.a, 0.3f);
 }
 
@@ -54,7 +54,7 @@ TEST(OpacityPoints, EqualValuesMakeAStepAndOnePointIsConstant) {
 TEST(OpacityPoints, AConstantRangeTakesTheOpacityAtItsValue) {
   TransferFunction tf = table(4, 4);
   const OpacityPoint points[] = {{0.0, 0.0}, {8.0, 1.0}};
-  setOpacityPoints(tf, points, "--opacity");
+  setOpacityPoints(tf, points);
   for (const glm::vec4& e : tf.table) EXPECT_FLOAT_EQ(e.a, 0.5f);
 }
 
@@ -62,7 +62,7 @@ TEST(OpacityPoints, ImpossiblePointsAreOneLineErrors) {
   auto message = [](std::vector<OpacityPoint> points) {
     TransferFunction tf = table();
     try {
-      setOpacityPoints(tf, points, "--opacity");
+      setOpacityPoints(tf, points);
     } catch (const Error& e) {
       return std::string(e.what());
     }

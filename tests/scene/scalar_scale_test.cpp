@@ -48,7 +48,7 @@ TEST(ScalarScale, LogCoordinatesAreDecadesOfTheRange) {
 TEST(ScalarScale, OpacityPointsFollowTheEntriesValues) {
   TransferFunction tf = logTable(1.0, 1e4, 257);  // entry 64 k holds 10^k
   const OpacityPoint points[] = {{10.0, 0.0}, {100.0, 0.9}};
-  setOpacityPoints(tf, points, "--opacity");
+  setOpacityPoints(tf, points);
   EXPECT_FLOAT_EQ(tf.table[0].a, 0.0f);
   EXPECT_FLOAT_EQ(tf.table[64].a, 0.0f);                                            // 10
   EXPECT_FLOAT_EQ(tf.table[96].a, float(0.9 * (std::sqrt(1000.0) - 10.0) / 90.0));  // 31.6
@@ -59,7 +59,7 @@ TEST(ScalarScale, OpacityPointsFollowTheEntriesValues) {
 TEST(ScalarScale, ALogScaleNeedsAPositiveRange) {
   for (auto [lo, hi] : {std::pair{0.0, 1.0}, {-2.0, 5.0}, {1.0, double(INFINITY)}}) {
     try {
-      checkScale(logTable(lo, hi), "--log-scale");
+      checkScale(logTable(lo, hi));
       ADD_FAILURE() << lo << " .. " << hi << " accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("--log-scale: a log scale needs a positive range"),
@@ -67,11 +67,11 @@ TEST(ScalarScale, ALogScaleNeedsAPositiveRange) {
           << e.what();
     }
   }
-  EXPECT_NO_THROW(checkScale(logTable(1e-30, 1e30), "--log-scale"));
-  EXPECT_NO_THROW(checkScale(logTable(2.0, 2.0), "--log-scale"));  // a constant positive field
+  EXPECT_NO_THROW(checkScale(logTable(1e-30, 1e30)));
+  EXPECT_NO_THROW(checkScale(logTable(2.0, 2.0)));  // a constant positive field
   TransferFunction lin = logTable(-2.0, 5.0);
   lin.scale = ScalarScale::Linear;
-  EXPECT_NO_THROW(checkScale(lin, "--log-scale"));
+  EXPECT_NO_THROW(checkScale(lin));
 }
 
 // The legend says which scale it shows: its title gains " (log)", which widens its layout.

@@ -1,14 +1,17 @@
 // Defaults a user of ParaView or VisIt expects when they give no camera, step or range: the view
-// frames the data, samples are half an element apart (at least 256 across the data set), and
-// opacity 1 means an optical depth of about 8 across the data set.
+// frames the data (scene/camera.h), samples are half an element apart (at least 256 across the
+// data set), and opacity 1 means an optical depth of about 8 across the data set. Every front end
+// (command line, viewer, in situ, benchmarks) takes them from here; the renderer only checks the
+// step it is given (render/step_limits.h).
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 
+#include "mesh/bounds.h"
 #include "mesh/unstructured_mesh.h"
-#include "prep/prepared_rank.h"
 
-namespace sm::render {
+namespace sm::scene {
 
 // Sum over elements of volume^(1/3), and the element count: summed across ranks, their ratio is the
 // mean element size (robust to the graded meshes CFD produces, unlike bounds / count).
@@ -42,17 +45,4 @@ inline double defaultUnitDistance(const mesh::Bounds& whole) {
   return whole.diagonal() / 8.0;
 }
 
-// Samples sit at t = k dt, computed in float: past 2^24 steps from the eye, consecutive sample
-// positions are no longer distinct (and past 2^32 the device's step index would wrap), so a step
-// finer than the farthest corner of `b` over 2^24 cannot be honoured. 0 for empty bounds.
-double finestStep(const glm::dvec3& eye, const mesh::Bounds& b);
-
-// Throws naming `option` unless `dt` is finite, positive and at least finestStep(eye, b).
-void checkStep(double dt, const glm::dvec3& eye, const mesh::Bounds& b,
-               const char* option = "--step");
-
-// Throws naming `option` when sampling at `dt` would leave most rays without a sample: a step
-// longer than the diagonal of bounds b (the image would be empty, or a few scattered pixels).
-void checkStepNotBeyondData(double dt, const mesh::Bounds& b, const char* option = "--step");
-
-}  // namespace sm::render
+}  // namespace sm::scene
