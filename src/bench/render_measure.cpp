@@ -57,6 +57,7 @@ RenderMeasurement measureRender(session::RankSession& session, const render::Ren
   m.fused = frame.timings.fused;
   m.image = scene::Image(s.width, s.height);
   m.image.pixels = std::move(frame.pixels);
+  session.releaseRenderers();  // the lists go with the measurement, as the next one starts cold
   return m;
 }
 

@@ -1,8 +1,8 @@
 #include "render/list_modes.h"
 
 #include <algorithm>
-#include <chrono>
 
+#include "common/timer.h"
 #include "vk/buffer.h"
 
 namespace sm::render {
@@ -11,10 +11,9 @@ namespace {
 // After a counting pass: prefix sum over the counts (the lists' offsets), storage for the
 // segments when they are kept, and the parameters for the next pass.
 void scanCounts(FrameWork& f, bool keepSegments) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Timer scan;
   f.out.segments = f.compositor.prepareLists();
-  f.out.timings.scanMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  f.out.timings.scanMs = scan.ms();
   f.resources.noteSegments(f.out.segments, keepSegments);
   // The shaders write no segment where the address is 0.
   f.params.segments = keepSegments ? f.resources.segments(f.out.segments) : 0;
@@ -91,7 +90,6 @@ void FixedLists::fill(FrameWork& f) const {
   f.out.timings.traversalMs = f.resources.timedSubmit(
       [&](VkCommandBuffer cmd) { pass.record(cmd, params, f.settings.width, f.settings.height); });
   f.out.timings.fused = true;
-  f.resources.noteSegments(0, false);
 }
 
 }  // namespace sm::render

@@ -1,20 +1,12 @@
 #include "render/renderer.h"
 
-#include <chrono>
-
 #include <glm/geometric.hpp>
 
+#include "common/timer.h"
 #include "render/frame_params.h"
 #include "render/step_limits.h"
 
 namespace sm::render {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 Renderer::Renderer(const vk::Context& ctx, const GpuScene& scene, comp::DeepCompositor& compositor,
                    std::shared_ptr<PassCache> passes, vk::Tracer tracer)
@@ -55,7 +47,7 @@ const ListStrategy& Renderer::strategyFor(const RenderSettings& s) {
 
 FrameResult Renderer::renderFrame(const RenderSettings& s, std::vector<glm::vec4> reuse,
                                   bool explicitRays) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Timer total;
   scene::checkScale(s.transferFunction);
   const bool exact = s.integration == Integration::ElementExact;
   resources_.setTransferFunction(s.transferFunction, scene_.scale(), exact);
@@ -72,14 +64,14 @@ FrameResult Renderer::renderFrame(const RenderSettings& s, std::vector<glm::vec4
                  params,
                  out};
   strategyFor(s).fill(work);
-  const auto tc = std::chrono::steady_clock::now();
+  const Timer composite;
   out.pixels = std::move(reuse);
   compositor_.composite(s.compositeMethod, out.pixels);
   out.composite = compositor_.stats();
-  out.timings.compositeMs = msSince(tc);
+  out.timings.compositeMs = composite.ms();
   out.counters = resources_.readStats();
   out.fragments = out.counters.fragments;
-  out.timings.totalMs = msSince(t0);
+  out.timings.totalMs = total.ms();
   return out;
 }
 

@@ -19,7 +19,7 @@ void checkPoint(const std::optional<glm::dvec3>& p, const char* key) {
   if (p && !finite(*p)) throw SettingError(key, p->x, ",", p->y, ",", p->z, " is not finite");
 }
 
-scene::TransferFunction makeTransferFunction(const FrameRequest& r) {
+scene::TransferFunction colours(const FrameRequest& r) {
   if (r.table.empty()) return scene::makeTransferFunction(r.colormap);
   if (r.table.size() < 2) throw SettingError("table", "has one entry; it needs at least 2");
   scene::TransferFunction tf;
@@ -65,6 +65,28 @@ void checkRequest(const FrameRequest& r) {
     throw SettingError("early-termination", r.earlyTermination, " must be positive and finite");
 }
 
+scene::TransferFunction makeTransferFunction(const FrameRequest& r, const std::string& field,
+                                             std::pair<double, double> range) {
+  scene::TransferFunction tf = colours(r);
+  tf.lo = range.first;
+  tf.hi = range.second;
+  if (r.logScale) {
+    tf.scale = scene::ScalarScale::Log;
+    if (!(range.first > 0))
+      throw SettingError("log-scale", "field '", field, "' has the range ", range.first, " .. ",
+                         range.second,
+                         ", and a log scale needs a positive one: give a range LO,HI with "
+                         "0 < LO < HI");
+  }
+  if (!r.opacityPoints.empty()) scene::setOpacityPoints(tf, r.opacityPoints);
+  if (r.nanColor) {
+    tf.nanColor = glm::vec3(*r.nanColor);
+    tf.nanOpacity = r.nanColor->a;
+  }
+  tf.opacityScale = r.opacityScale;
+  return tf;
+}
+
 scene::Camera makeCamera(const FrameRequest& r, const mesh::Bounds& whole) {
   const double aspect = double(r.width) / r.height;
   scene::Camera c;
@@ -99,23 +121,7 @@ render::RenderSettings makeRenderSettings(const FrameRequest& r, const DataExten
   s.height = r.height;
   s.camera = makeCamera(r, data.whole);
   scene::TransferFunction& tf = s.transferFunction;
-  tf = makeTransferFunction(r);
-  tf.lo = range.first;
-  tf.hi = range.second;
-  if (r.logScale) {
-    tf.scale = scene::ScalarScale::Log;
-    if (!(range.first > 0))
-      throw SettingError("log-scale", "field '", field, "' has the range ", range.first, " .. ",
-                         range.second,
-                         ", and a log scale needs a positive one: give a range LO,HI with "
-                         "0 < LO < HI");
-  }
-  if (!r.opacityPoints.empty()) scene::setOpacityPoints(tf, r.opacityPoints);
-  if (r.nanColor) {
-    tf.nanColor = glm::vec3(*r.nanColor);
-    tf.nanOpacity = r.nanColor->a;
-  }
-  tf.opacityScale = r.opacityScale;
+  tf = makeTransferFunction(r, field, range);
   tf.unitDistance = r.unitDistance.value_or(scene::defaultUnitDistance(data.whole));
   if (!(tf.unitDistance > 0))
     throw SettingError("unit-distance", "the data set is flat (zero volume): give one");

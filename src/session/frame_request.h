@@ -63,6 +63,12 @@ render::RenderSettings makeRenderSettings(const FrameRequest& r, const DataExten
                                           const std::string& field,
                                           std::pair<double, double> range);
 
+// The transfer function of `r` over `range` of `field` (named in messages): the colour map or
+// table, the scale (a log scale needs a positive range), opacity points, NaN colour and opacity
+// scale. The unit distance is makeRenderSettings's (it needs the data set).
+scene::TransferFunction makeTransferFunction(const FrameRequest& r, const std::string& field,
+                                             std::pair<double, double> range);
+
 // The camera of `r` over the whole data set `whole`.
 scene::Camera makeCamera(const FrameRequest& r, const mesh::Bounds& whole);
 

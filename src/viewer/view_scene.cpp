@@ -211,19 +211,13 @@ void ViewScene::applyState(ViewState& state) {
   warnIfLinearInstead(state);
   if (state.colormap != colormap_ ||
       (points && (fieldIndex_ != tableField_ || scale != tableScale_))) {
+    session::FrameRequest r = app::frameRequest(job_);  // --nan-color holds for every map
+    r.colormap = choices_.colormaps[size_t(state.colormap)];
+    r.logScale = scale == scene::ScalarScale::Log;  // only over a positive range (scaleFor)
+    if (fieldIndex_ != 0) r.opacityPoints.clear();
     const double unit = settings_.transferFunction.unitDistance;
-    settings_.transferFunction =
-        scene::makeTransferFunction(choices_.colormaps[size_t(state.colormap)]);
-    settings_.transferFunction.lo = field_.range.first;
-    settings_.transferFunction.hi = field_.range.second;
-    settings_.transferFunction.scale = scale;
+    settings_.transferFunction = session::makeTransferFunction(r, field_.name, field_.range);
     settings_.transferFunction.unitDistance = unit;
-    if (points && fieldIndex_ == 0)
-      scene::setOpacityPoints(settings_.transferFunction, job_.opacityPoints);
-    if (job_.nanColor) {  // over the colour map's own NaN colour, for every map
-      settings_.transferFunction.nanColor = glm::vec3(*job_.nanColor);
-      settings_.transferFunction.nanOpacity = job_.nanColor->a;
-    }
     colormap_ = state.colormap;
     tableField_ = fieldIndex_;
     tableScale_ = scale;

@@ -22,13 +22,18 @@ struct Cube {
     mesh::UnstructuredMesh m = mesh;
     return prep::prepareRank(m, prep::makeGlobalFrame(mesh.bounds()), prep::PrepOptions{}).rank;
   }
+  // The cube as `session`'s scene, its positions moved in; the rank is returned without them.
+  prep::PreparedRank upload(RankSession& session) const {
+    prep::PreparedRank r = rank();
+    session.setScene(r, std::move(r.positions)).setScalars(prep::gatherScalars(r, values));
+    return r;
+  }
 };
 
 TEST(RankSession, FramesAreThoseOfARendererWiredByHand) {
   const Cube cube;
-  prep::PreparedRank rank = cube.rank();
   RankSession session(vk::ContextOptions{}, nullptr);
-  session.setScene(rank, rank.positions).setScalars(prep::gatherScalars(rank, cube.values));
+  cube.upload(session);
   const render::FrameResult a = session.render(cubeView(48, 32));
 
   test::RenderRig rig(cube.mesh, cube.values, 48, 32);
@@ -40,11 +45,8 @@ TEST(RankSession, FramesAreThoseOfARendererWiredByHand) {
 
 TEST(RankSession, ANewSizeCompilesNothingAndKeptSizesAreReused) {
   const Cube cube;
-  prep::PreparedRank rank = cube.rank();
   RankSession session(vk::ContextOptions{}, nullptr, SessionOptions{{}, vk::Tracer::Auto, 2});
-  session.setScene(rank, std::move(rank.positions))
-      .setScalars(prep::gatherScalars(rank, cube.values));
-  EXPECT_TRUE(rank.positions.empty());  // moved in: the host holds one copy
+  EXPECT_TRUE(cube.upload(session).positions.empty());  // moved in: the host holds one copy
   session.render(cubeView(48, 32));
   const uint64_t built = session.pipelinesBuilt();
   EXPECT_GT(built, 0u);
@@ -64,10 +66,8 @@ TEST(RankSession, ANewSizeCompilesNothingAndKeptSizesAreReused) {
 
 TEST(RankSession, OtherListsOrTracersGetRenderersOfTheirOwn) {
   const Cube cube;
-  prep::PreparedRank rank = cube.rank();
   RankSession session(vk::ContextOptions{}, nullptr, SessionOptions{{}, vk::Tracer::Auto, 4});
-  session.setScene(rank, std::move(rank.positions))
-      .setScalars(prep::gatherScalars(rank, cube.values));
+  cube.upload(session);
   comp::CompositorOptions fixed;
   fixed.mode = comp::ListMode::FixedMerge;
   render::Renderer& twoPass = session.renderer(32, 32);
